@@ -1,0 +1,1 @@
+//! Shared inputs for Folio's criterion benches (see `benches/`).

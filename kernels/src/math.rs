@@ -1,0 +1,211 @@
+//! The one math shim. Every kernel calls `math::sqrt`, `math::sin`, ... and never a
+//! method such as `x.sqrt()`, so the backend is chosen here and only here:
+//! the platform libm through `std` with the `std` feature, the pure-Rust `libm` crate
+//! without it (Cortex-M, wasm).
+
+use crate::real::{Real, sealed::Sealed};
+
+/// Square root, $\sqrt{x}$.
+#[inline(always)]
+#[must_use]
+pub fn sqrt<T: Real>(x: T) -> T {
+    x.sqrt_impl()
+}
+
+/// Sine (radians).
+#[inline(always)]
+#[must_use]
+pub fn sin<T: Real>(x: T) -> T {
+    x.sin_impl()
+}
+
+/// Cosine (radians).
+#[inline(always)]
+#[must_use]
+pub fn cos<T: Real>(x: T) -> T {
+    x.cos_impl()
+}
+
+/// Four-quadrant arctangent of `y / x` in $(-\pi, \pi]$; `atan2(0, 0) = 0`.
+#[inline(always)]
+#[must_use]
+pub fn atan2<T: Real>(y: T, x: T) -> T {
+    y.atan2_impl(x)
+}
+
+/// Arcsine in $[-\pi/2, \pi/2]$ (NaN outside $[-1, 1]$).
+#[inline(always)]
+#[must_use]
+pub fn asin<T: Real>(x: T) -> T {
+    x.asin_impl()
+}
+
+/// Absolute value.
+#[inline(always)]
+#[must_use]
+pub fn abs<T: Real>(x: T) -> T {
+    x.abs_impl()
+}
+
+/// Euclidean length $\lVert v \rVert = \sqrt{v \cdot v}$.
+#[inline(always)]
+#[must_use]
+pub fn length<T: Real>(v: T::Vec3) -> T {
+    use crate::real::Vec3Ops;
+    sqrt(v.dot(v))
+}
+
+macro_rules! backend {
+    ($t:ident, $sqrt:ident, $sin:ident, $cos:ident, $atan2:ident, $asin:ident, $fabs:ident) => {
+        impl Sealed for $t {
+            #[inline(always)]
+            fn sqrt_impl(self) -> Self {
+                #[cfg(feature = "std")]
+                {
+                    $t::sqrt(self)
+                }
+                #[cfg(not(feature = "std"))]
+                {
+                    libm::$sqrt(self)
+                }
+            }
+            #[inline(always)]
+            fn sin_impl(self) -> Self {
+                #[cfg(feature = "std")]
+                {
+                    $t::sin(self)
+                }
+                #[cfg(not(feature = "std"))]
+                {
+                    libm::$sin(self)
+                }
+            }
+            #[inline(always)]
+            fn cos_impl(self) -> Self {
+                #[cfg(feature = "std")]
+                {
+                    $t::cos(self)
+                }
+                #[cfg(not(feature = "std"))]
+                {
+                    libm::$cos(self)
+                }
+            }
+            #[inline(always)]
+            fn atan2_impl(self, x: Self) -> Self {
+                #[cfg(feature = "std")]
+                {
+                    $t::atan2(self, x)
+                }
+                #[cfg(not(feature = "std"))]
+                {
+                    libm::$atan2(self, x)
+                }
+            }
+            #[inline(always)]
+            fn asin_impl(self) -> Self {
+                #[cfg(feature = "std")]
+                {
+                    $t::asin(self)
+                }
+                #[cfg(not(feature = "std"))]
+                {
+                    libm::$asin(self)
+                }
+            }
+            #[inline(always)]
+            fn abs_impl(self) -> Self {
+                #[cfg(feature = "std")]
+                {
+                    $t::abs(self)
+                }
+                #[cfg(not(feature = "std"))]
+                {
+                    libm::$fabs(self)
+                }
+            }
+            const SIN_POLY: &'static [Self] = poly::$t::SIN;
+            const COS_POLY: &'static [Self] = poly::$t::COS;
+            const ATAN_POLY: &'static [Self] = poly::$t::ATAN;
+            const PI_SPLIT: [Self; 3] = poly::$t::PI_SPLIT;
+            const ROUND_MAGIC: Self = poly::$t::ROUND_MAGIC;
+        }
+    };
+}
+
+backend!(f32, sqrtf, sinf, cosf, atan2f, asinf, fabsf);
+backend!(f64, sqrt, sin, cos, atan2, asin, fabs);
+
+/// Polynomial coefficients for [`crate::lanes`], lowest order first. Each set is a
+/// Chebyshev fit (in $u = r^2$) computed for Folio with 50-digit arithmetic; the fitting
+/// error is below the precision's rounding (see `lanes` tests for measured accuracy).
+mod poly {
+    #[allow(clippy::excessive_precision)]
+    pub mod f64 {
+        pub const SIN: &[f64] = &[
+            -0.16666666666666666,
+            0.008333333333333333,
+            -0.00019841269841269806,
+            2.7557319223971264e-06,
+            -2.5052108382391406e-08,
+            1.605904347941901e-10,
+            -7.647139121983424e-13,
+            2.8104687777073216e-15,
+            -8.006069886350886e-18,
+        ];
+        pub const COS: &[f64] = &[
+            -0.5,
+            0.041666666666666664,
+            -0.0013888888888888816,
+            2.4801587301556646e-05,
+            -2.7557319217593045e-07,
+            2.0876756238770223e-09,
+            -1.147069401087498e-11,
+            4.777404889695354e-14,
+            -1.5169166967261124e-16,
+        ];
+        pub const ATAN: &[f64] = &[
+            -0.3333333333333333,
+            0.1999999999999552,
+            -0.14285714284666542,
+            0.11111111015256361,
+            -0.09090904578123903,
+            0.07692183190826087,
+            -0.06664511447381948,
+            0.0585814891280221,
+            -0.0508544973794026,
+            0.03923165829558719,
+            -0.01917688711906226,
+        ];
+        /// 32 + 32 + 53 bits of pi.
+        pub const PI_SPLIT: [f64; 3] = [3.1415926534682512, 1.2154201012607932e-10, 4.044532497591901e-21];
+        pub const ROUND_MAGIC: f64 = 6755399441055744.0;
+    }
+    #[allow(clippy::excessive_precision)]
+    pub mod f32 {
+        pub const SIN: &[f32] = &[
+            -0.1666666716337204,
+            0.00833333283662796,
+            -0.00019841086759697646,
+            2.75364641311171e-06,
+            -2.408019028621311e-08,
+        ];
+        pub const COS: &[f32] = &[
+            -0.5,
+            0.0416666604578495,
+            -0.0013888651737943292,
+            2.4774579287623055e-05,
+            -2.62975163423107e-07,
+        ];
+        pub const ATAN: &[f32] = &[
+            -0.3333333134651184,
+            0.19999539852142334,
+            -0.14263956248760223,
+            0.10743731260299683,
+            -0.06451927870512009,
+        ];
+        /// 10 + 10 + 24 bits of pi.
+        pub const PI_SPLIT: [f32; 3] = [3.140625, 0.0009679794311523438, -3.2584136988589307e-07];
+        pub const ROUND_MAGIC: f32 = 12582912.0;
+    }
+}

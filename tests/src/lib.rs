@@ -1,0 +1,1 @@
+//! Test support shared by Folio's integration tests.
