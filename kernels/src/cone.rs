@@ -16,9 +16,13 @@
 //! **Domain.** Any finite $(x, y)$ with $x \ge 0$, any finite $A$ and $\rho$, and
 //! $\theta \in [\theta_{min}, \pi/2]$, $\theta_{min} = 10^{-4}$: [`ConeCurl::new`] clamps
 //! $\theta$ into it. $\theta = \pi/2$ is the flat page; as $\theta \to 0$ the page winds
-//! onto the ray $x = z = 0$ ($\lvert T - (0, y', 0)\rvert \le R\sin\theta$), which the
-//! clamp stops at a distance of at most $10^{-4} R$ from the ray. At the apex ($R = 0$)
-//! the point maps to the apex. Units: lengths in page units, angles in radians.
+//! onto the cone's tangent ruling $x = z = 0$ (every point lies within the cross-section
+//! circle's diameter $2R\sin\theta$ of it), which the clamp stops at $2 \cdot 10^{-4} R$.
+//! The distance to the apex is preserved exactly, $\lvert T(x,y) - (0, A, 0)\rvert = R$,
+//! and the apex ($R = 0$) maps to itself. Near an apex inside the page the surface is
+//! self-similar, so neighbour distances there change by a fixed fraction at any sampling;
+//! away from it they change to second order in the spacing.
+//! Units: lengths in page units, angles in radians.
 //!
 //! **Jacobian** ([`ConeCurl::jacobian`]) of $T$ with respect to $(\theta, A, \rho)$, exact on
 //! the domain (one-sided at its ends; the $\theta$ column is zero where the clamp is active,
@@ -103,7 +107,8 @@ impl<T: Real> ConeCurl<T> {
     fn polar(&self, x: T, y: T) -> Polar<T> {
         let dy = y - self.apex;
         let radius = math::sqrt(x * x + dy * dy);
-        let alpha = math::atan2(x, dy);
+        // `+ 0` turns x = -0.0 into +0.0, so the spine below the apex maps one way only.
+        let alpha = math::atan2(x + T::ZERO, dy);
         let (cos_a, sin_a) =
             if radius > T::ZERO { (dy / radius, x / radius) } else { (T::ONE, T::ZERO) };
         let beta = alpha * self.inv_sin_t;
@@ -182,7 +187,7 @@ impl<T: Real> ConeCurl<T> {
         for (((ox, oy), oz), (&x, &y)) in outs.zip(xs[..n].iter().zip(&ys[..n])) {
             let dy = y - self.apex;
             let radius = math::sqrt(x * x + dy * dy);
-            let (sin_b, cos_b) = lanes::sin_cos(lanes::atan2(x, dy) * self.inv_sin_t);
+            let (sin_b, cos_b) = lanes::sin_cos(lanes::atan2(x + T::ZERO, dy) * self.inv_sin_t);
             let (a, b, c) = self.turn(self.cone_point(radius, sin_b, cos_b));
             *ox = a;
             *oy = b;

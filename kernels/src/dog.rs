@@ -22,6 +22,8 @@
 //! makes the KKT matrix singular. [`FlatStarRemedy`] evaluates the Jacobian of a (near-)flat
 //! star at $p_0$ displaced along the star normal by a tiny relative offset (the remedy of
 //! RHS19), which restores full row rank at an $O(\text{offset})$ change of the rows.
+//! A boundary star whose through-curve is straight is planar whatever the page does (two of
+//! its three edges are collinear), so the remedy always applies to it.
 
 use core::marker::PhantomData;
 

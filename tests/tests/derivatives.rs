@@ -1,0 +1,215 @@
+//! Every gradient, Hessian, Jacobian and constraint Hessian of `folio-kernels` against
+//! central finite differences (f64) on 200 seeded random configurations per term, plus
+//! Hessian symmetry. Run with `--nocapture` to see the worst errors per term.
+
+use folio_kernels::binding::Binding;
+use folio_kernels::cone::ConeCurl;
+use folio_kernels::dog::{DogBoundaryStar, DogInnerStar};
+use folio_kernels::fix::Fix;
+use folio_kernels::glue::Glue;
+use folio_kernels::gravity::Gravity;
+use folio_kernels::iso2d::Iso2d;
+use folio_kernels::iso3d::Iso3d;
+use folio_kernels::positional::Positional;
+use folio_kernels::spring::Spring;
+use folio_kernels::term::NodeVecs;
+use folio_kernels::{Constraint, Potential, curve_laplacian, dog_laplacian};
+use folio_tests::{
+    BOUNDARY_DIRS, FdErrors, INNER_DIRS, Rng, check_constraint, check_potential, jittered_star,
+    rel_err,
+};
+use glam::DVec3;
+
+const CONFIGS: usize = 200;
+/// Bound on the worst relative FD error of first and second derivatives.
+const FD_TOL: f64 = 1e-6;
+/// Bound on relative Hessian asymmetry.
+const SYM_TOL: f64 = 1e-13;
+
+fn report(name: &str, e: FdErrors) {
+    println!(
+        "{name:<28} first {:9.2e}   second {:9.2e}   asym {:9.2e}",
+        e.first, e.second, e.asymmetry
+    );
+    assert!(e.first <= FD_TOL, "{name}: first derivative error {:e}", e.first);
+    assert!(e.second <= FD_TOL, "{name}: second derivative error {:e}", e.second);
+    assert!(e.asymmetry <= SYM_TOL, "{name}: Hessian asymmetry {:e}", e.asymmetry);
+}
+
+fn potentials<P: Potential<f64, N>, const N: usize>(
+    name: &str,
+    seed: u64,
+    mut make: impl FnMut(&mut Rng) -> (P, NodeVecs<f64, N>),
+) {
+    let mut rng = Rng::new(seed);
+    let mut worst = FdErrors::default();
+    for _ in 0..CONFIGS {
+        let (p, x) = make(&mut rng);
+        worst = worst.max(check_potential(&p, &x));
+    }
+    report(name, worst);
+}
+
+fn constraints<C: Constraint<f64, R, N>, const R: usize, const N: usize>(
+    name: &str,
+    seed: u64,
+    mut make: impl FnMut(&mut Rng) -> (C, NodeVecs<f64, N>),
+) {
+    let mut rng = Rng::new(seed);
+    let mut worst = FdErrors::default();
+    for _ in 0..CONFIGS {
+        let (c, x) = make(&mut rng);
+        let lambda = [(); R].map(|()| rng.uniform(-2.0, 2.0));
+        worst = worst.max(check_constraint(&c, &x, &lambda));
+    }
+    report(name, worst);
+}
+
+fn lengths<const K: usize>(rng: &mut Rng) -> [f64; K] {
+    [(); K].map(|()| rng.uniform(0.5, 1.5))
+}
+
+#[test]
+fn dog_inner_star() {
+    constraints("DOG inner star", 1, |r| (DogInnerStar::new(), jittered_star(r, INNER_DIRS, 0.7)));
+}
+
+#[test]
+fn dog_boundary_star() {
+    constraints("DOG boundary star", 2, |r| {
+        (DogBoundaryStar::new(), jittered_star(r, BOUNDARY_DIRS, 0.7))
+    });
+}
+
+#[test]
+fn dog_laplacian_inner() {
+    potentials("DOG Laplacian inner", 3, |r| {
+        (dog_laplacian::inner(lengths(r)).unwrap(), jittered_star(r, INNER_DIRS, 0.7))
+    });
+}
+
+#[test]
+fn dog_laplacian_boundary() {
+    potentials("DOG Laplacian boundary", 4, |r| {
+        let dirs = [DVec3::ZERO, DVec3::X, DVec3::NEG_X];
+        (dog_laplacian::boundary(lengths(r)).unwrap(), jittered_star(r, dirs, 0.7))
+    });
+}
+
+#[test]
+fn curve_laplacian() {
+    potentials("curve Laplacian", 5, |r| {
+        let dirs = [DVec3::ZERO, DVec3::NEG_X, DVec3::X];
+        (curve_laplacian::new(lengths(r)).unwrap(), jittered_star(r, dirs, 0.7))
+    });
+}
+
+#[test]
+fn iso2d() {
+    constraints("iso2D", 6, |r| (Iso2d::new(r.uniform(0.5, 1.5)).unwrap(), [r.vec(2.0), r.vec(2.0)]));
+}
+
+#[test]
+fn binding() {
+    constraints("binding", 7, |r| {
+        (Binding::new(r.uniform(0.0, 1.0)).unwrap(), [r.vec(2.0), r.vec(2.0), r.vec(2.0)])
+    });
+}
+
+#[test]
+fn fix() {
+    constraints("fix", 8, |r| (Fix::new(r.vec(1.0)).unwrap(), [r.vec(2.0), r.vec(2.0)]));
+}
+
+#[test]
+fn glue() {
+    potentials("glue", 9, |r| {
+        let b1 = r.vec(2.0);
+        let b2 = b1 + (DVec3::X + r.vec(0.5)) * r.uniform(0.05, 1.0);
+        let up = |r: &mut Rng| (DVec3::Y + r.vec(1.0)) * r.uniform(0.5, 1.5);
+        (Glue::new(), [b1 + up(r), b1, b2, b2 + up(r)])
+    });
+}
+
+#[test]
+fn gravity() {
+    potentials("gravity", 10, |r| {
+        (Gravity::new(r.uniform(1.0, 20.0), r.uniform(0.0, 1.0)).unwrap(), [r.vec(2.0)])
+    });
+}
+
+#[test]
+fn iso3d() {
+    potentials("iso3D", 11, |r| (Iso3d::new(r.uniform(0.5, 1.5)).unwrap(), [r.vec(2.0), r.vec(2.0)]));
+}
+
+#[test]
+fn positional() {
+    potentials("positional", 12, |r| (Positional::new(r.vec(3.0)).unwrap(), [r.vec(3.0)]));
+}
+
+#[test]
+fn spring() {
+    potentials("spring (Provot)", 13, |r| {
+        (Spring::new(r.uniform(0.5, 2.0), r.uniform(0.1, 3.0)).unwrap(), [r.vec(2.0), r.vec(2.0)])
+    });
+}
+
+#[test]
+fn spring_force_and_damping_jacobians() {
+    let mut rng = Rng::new(14);
+    let mut worst: f64 = 0.0;
+    for _ in 0..CONFIGS {
+        let s = Spring::new(rng.uniform(0.5, 2.0), rng.uniform(0.1, 3.0)).unwrap();
+        let x = [rng.vec(2.0), rng.vec(2.0)];
+        let v = [rng.vec(1.0), rng.vec(1.0)];
+        let kd = rng.uniform(0.0, 2.0);
+        // Force is minus the gradient; its Jacobian minus the Hessian.
+        let f: Vec<f64> = s.force(&x).iter().flat_map(|p| p.to_array()).collect();
+        let g: Vec<f64> = s.gradient(&x).iter().flat_map(|p| (-*p).to_array()).collect();
+        worst = worst.max(rel_err(&f, &g));
+        // Damping Jacobian against differences of the damping force in the velocities.
+        let jd = folio_tests::flat_blocks::<f64, 2>(&s.damping_jacobian(&x, kd));
+        let jd_fd = folio_tests::fd_jacobian(&v, |w| {
+            s.damping_force(&x, w, kd).iter().flat_map(|p| p.to_array()).collect()
+        });
+        worst = worst.max(rel_err(&jd, &jd_fd));
+        let fj = folio_tests::flat_blocks::<f64, 2>(&s.force_jacobian(&x));
+        let fj_fd = folio_tests::fd_jacobian(&x, |y| {
+            s.force(y).iter().flat_map(|p| p.to_array()).collect()
+        });
+        worst = worst.max(rel_err(&fj, &fj_fd));
+    }
+    println!("{:<28} first {worst:9.2e}", "spring force / damping");
+    assert!(worst <= FD_TOL, "spring force/damping Jacobian error {worst:e}");
+}
+
+#[test]
+fn cone_curl_jacobian() {
+    let mut rng = Rng::new(15);
+    let mut worst: f64 = 0.0;
+    for _ in 0..CONFIGS {
+        let (theta, apex, rho) =
+            (rng.uniform(0.15, 1.5), rng.uniform(-12.0, 2.0), rng.uniform(-3.0, 3.0));
+        let (x, y) = (rng.uniform(0.0, 12.0), rng.uniform(0.0, 16.0));
+        let jac = ConeCurl::new(theta, apex, rho).jacobian(x, y);
+        let analytic: Vec<f64> = (0..3).flat_map(|row| jac.map(|col| col[row])).collect();
+        let params = [theta, apex, rho];
+        let mut fd = vec![0.0; 9];
+        for k in 0..3 {
+            let h = f64::EPSILON.cbrt() * params[k].abs().max(1.0);
+            let (mut p, mut m) = (params, params);
+            p[k] += h;
+            m[k] -= h;
+            let tp = ConeCurl::new(p[0], p[1], p[2]).map_point(x, y);
+            let tm = ConeCurl::new(m[0], m[1], m[2]).map_point(x, y);
+            let d = (tp - tm) / (2.0 * h);
+            for row in 0..3 {
+                fd[row * 3 + k] = d[row];
+            }
+        }
+        worst = worst.max(rel_err(&analytic, &fd));
+    }
+    println!("{:<28} first {worst:9.2e}", "cone curl Jacobian");
+    assert!(worst <= FD_TOL, "cone Jacobian error {worst:e}");
+}
