@@ -37,6 +37,9 @@ use crate::lanes;
 use crate::math;
 use crate::real::{Real, Vec3Ops, clamp_keep_nan};
 
+/// Points per block in [`ConeCurl::map_batch`] (two SSE/NEON registers of `f32`, one AVX).
+pub const LANES: usize = 8;
+
 /// Smallest cone half-angle the map uses (radians).
 pub const THETA_MIN: f64 = 1e-4;
 
@@ -173,7 +176,10 @@ impl<T: Real> ConeCurl<T> {
 
     /// Maps a batch of page points given as structure-of-arrays `xs`, `ys` into `out_x`,
     /// `out_y`, `out_z`. Processes `n` = the shortest slice length and returns `n`.
-    /// Branch-free per point ([`crate::lanes`]), so the loop vectorizes.
+    /// Works in blocks of [`LANES`] points, stage by stage over fixed-size arrays with the
+    /// branch-free [`crate::lanes`] functions, so each stage becomes SIMD code (SSE2 or NEON
+    /// lanes by default; with `std` on x86-64 the same code compiled for AVX2 is chosen at run
+    /// time when the CPU has it). Results agree with [`ConeCurl::map_point`] to a few ulp.
     pub fn map_batch(
         &self,
         out_x: &mut [T],
@@ -182,17 +188,83 @@ impl<T: Real> ConeCurl<T> {
         xs: &[T],
         ys: &[T],
     ) -> usize {
+        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+        if std::is_x86_feature_detected!("avx2") {
+            #[allow(unsafe_code)]
+            // SAFETY: `map_batch_avx2` only requires AVX2, which the CPU was just found to have.
+            return unsafe { self.map_batch_avx2(out_x, out_y, out_z, xs, ys) };
+        }
+        self.map_batch_portable(out_x, out_y, out_z, xs, ys)
+    }
+
+    /// [`ConeCurl::map_batch`]'s body compiled with AVX2 enabled (8 `f32` or 4 `f64` lanes).
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[target_feature(enable = "avx2")]
+    fn map_batch_avx2(
+        &self,
+        out_x: &mut [T],
+        out_y: &mut [T],
+        out_z: &mut [T],
+        xs: &[T],
+        ys: &[T],
+    ) -> usize {
+        self.map_batch_portable(out_x, out_y, out_z, xs, ys)
+    }
+
+    /// The batch body, inlined into each instruction-set variant.
+    #[inline(always)]
+    fn map_batch_portable(
+        &self,
+        out_x: &mut [T],
+        out_y: &mut [T],
+        out_z: &mut [T],
+        xs: &[T],
+        ys: &[T],
+    ) -> usize {
         let n = xs.len().min(ys.len()).min(out_x.len()).min(out_y.len()).min(out_z.len());
-        let outs = out_x[..n].iter_mut().zip(&mut out_y[..n]).zip(&mut out_z[..n]);
-        for (((ox, oy), oz), (&x, &y)) in outs.zip(xs[..n].iter().zip(&ys[..n])) {
-            let dy = y - self.apex;
-            let radius = math::sqrt(x * x + dy * dy);
-            let (sin_b, cos_b) = lanes::sin_cos(lanes::atan2(x + T::ZERO, dy) * self.inv_sin_t);
-            let (a, b, c) = self.turn(self.cone_point(radius, sin_b, cos_b));
-            *ox = a;
-            *oy = b;
-            *oz = c;
+        let full = n - n % LANES;
+        let blocks = out_x[..full]
+            .chunks_exact_mut(LANES)
+            .zip(out_y[..full].chunks_exact_mut(LANES))
+            .zip(out_z[..full].chunks_exact_mut(LANES))
+            .zip(xs[..full].chunks_exact(LANES).zip(ys[..full].chunks_exact(LANES)));
+        for (((ox, oy), oz), (x, y)) in blocks {
+            let x = <[T; LANES]>::try_from(x).unwrap_or([T::ZERO; LANES]);
+            let y = <[T; LANES]>::try_from(y).unwrap_or([T::ZERO; LANES]);
+            let (a, b, c) = self.map_lanes(&x, &y);
+            ox.copy_from_slice(&a);
+            oy.copy_from_slice(&b);
+            oz.copy_from_slice(&c);
+        }
+        // The tail, padded into one more block.
+        let tail = n - full;
+        if tail > 0 {
+            let (mut x, mut y) = ([T::ZERO; LANES], [T::ZERO; LANES]);
+            x[..tail].copy_from_slice(&xs[full..n]);
+            y[..tail].copy_from_slice(&ys[full..n]);
+            let (a, b, c) = self.map_lanes(&x, &y);
+            out_x[full..n].copy_from_slice(&a[..tail]);
+            out_y[full..n].copy_from_slice(&b[..tail]);
+            out_z[full..n].copy_from_slice(&c[..tail]);
         }
         n
+    }
+
+    /// One block of [`LANES`] points, each stage a simple loop over the lanes.
+    #[inline(always)]
+    fn map_lanes(&self, x: &[T; LANES], y: &[T; LANES]) -> ([T; LANES], [T; LANES], [T; LANES]) {
+        let mut radius = [T::ZERO; LANES];
+        let mut beta = [T::ZERO; LANES];
+        for k in 0..LANES {
+            let dy = y[k] - self.apex;
+            radius[k] = math::sqrt(x[k] * x[k] + dy * dy);
+            beta[k] = lanes::atan2(x[k] + T::ZERO, dy) * self.inv_sin_t;
+        }
+        let (mut ox, mut oy, mut oz) = ([T::ZERO; LANES], [T::ZERO; LANES], [T::ZERO; LANES]);
+        for k in 0..LANES {
+            let (sin_b, cos_b) = lanes::sin_cos(beta[k]);
+            (ox[k], oy[k], oz[k]) = self.turn(self.cone_point(radius[k], sin_b, cos_b));
+        }
+        (ox, oy, oz)
     }
 }

@@ -74,13 +74,14 @@ pub fn atan2<T: Real>(y: T, x: T) -> T {
     let swap = ay > ax;
     let hi = select(swap, ay, ax);
     let lo = select(swap, ax, ay);
-    // `hi == 0` only when both are zero; NaN takes the division and propagates.
-    let t = select(hi == T::ZERO, T::ZERO, lo / hi);
-    let tan_pi_8 = T::from_f64(0.414_213_562_373_095_03);
-    let big = t > tan_pi_8;
-    let t2 = select(big, (t - T::ONE) / (t + T::ONE), t);
-    let u = t2 * t2;
-    let mut a = t2 + t2 * u * horner(T::ATAN_POLY, u);
+    // t = lo/hi, and (t - 1)/(t + 1) = (lo - hi)/(lo + hi): one division either way.
+    let big = lo > T::from_f64(0.414_213_562_373_095_03) * hi;
+    let num = select(big, lo - hi, lo);
+    // `hi == 0` only when both are zero (then num = 0 and t = 0); NaN propagates.
+    let den = select(hi == T::ZERO, T::ONE, select(big, lo + hi, hi));
+    let t = num / den;
+    let u = t * t;
+    let mut a = t + t * u * horner(T::ATAN_POLY, u);
     a = select(big, a + T::FRAC_PI_4, a);
     a = select(swap, T::FRAC_PI_2 - a, a);
     a = select(x < T::ZERO, T::PI - a, a);
