@@ -30,12 +30,24 @@ impl Inputs {
         let dirs = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)];
         (0..count)
             .map(|_| {
-                let c = [self.uniform(-5.0, 5.0), self.uniform(-5.0, 5.0), self.uniform(-1.0, 1.0)];
+                let c = [
+                    self.uniform(-5.0, 5.0),
+                    self.uniform(-5.0, 5.0),
+                    self.uniform(-1.0, 1.0),
+                ];
                 core::array::from_fn(|k| {
-                    let (dx, dy) = if k == 0 { (0.0, 0.0) } else { dirs[(k - 1) % 4] };
+                    let (dx, dy) = if k == 0 {
+                        (0.0, 0.0)
+                    } else {
+                        dirs[(k - 1) % 4]
+                    };
                     let z = if k == 0 { 0.0 } else { self.uniform(-0.2, 0.2) };
                     let v = |a: f64| T::from_f64(a);
-                    T::Vec3::new(v(c[0] + dx * self.uniform(0.9, 1.1)), v(c[1] + dy * self.uniform(0.9, 1.1)), v(c[2] + z))
+                    T::Vec3::new(
+                        v(c[0] + dx * self.uniform(0.9, 1.1)),
+                        v(c[1] + dy * self.uniform(0.9, 1.1)),
+                        v(c[2] + z),
+                    )
                 })
             })
             .collect()
@@ -71,7 +83,11 @@ macro_rules! seed_cone_loop {
                     big_r + a - r * (1.0 - beta.cos()) * theta.sin(),
                     r * (1.0 - beta.cos()) * theta.cos(),
                 ];
-                *o = [v1[0] * rho.cos() - v1[2] * rho.sin(), v1[1], v1[0] * rho.sin() + v1[2] * rho.cos()];
+                *o = [
+                    v1[0] * rho.cos() - v1[2] * rho.sin(),
+                    v1[1],
+                    v1[0] * rho.sin() + v1[2] * rho.cos(),
+                ];
             }
         }
     };

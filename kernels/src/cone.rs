@@ -112,10 +112,20 @@ impl<T: Real> ConeCurl<T> {
         let radius = math::sqrt(x * x + dy * dy);
         // `+ 0` turns x = -0.0 into +0.0, so the spine below the apex maps one way only.
         let alpha = math::atan2(x + T::ZERO, dy);
-        let (cos_a, sin_a) =
-            if radius > T::ZERO { (dy / radius, x / radius) } else { (T::ONE, T::ZERO) };
+        let (cos_a, sin_a) = if radius > T::ZERO {
+            (dy / radius, x / radius)
+        } else {
+            (T::ONE, T::ZERO)
+        };
         let beta = alpha * self.inv_sin_t;
-        Polar { radius, cos_a, sin_a, beta, sin_b: math::sin(beta), cos_b: math::cos(beta) }
+        Polar {
+            radius,
+            cos_a,
+            sin_a,
+            beta,
+            sin_b: math::sin(beta),
+            cos_b: math::cos(beta),
+        }
     }
 
     /// $v$ before the turn, from the radius and $\sin\beta$, $\cos\beta$.
@@ -124,13 +134,21 @@ impl<T: Real> ConeCurl<T> {
         let (s, c) = (self.sin_t, self.cos_t);
         let one_minus_cos = T::ONE - cos_b;
         let rs = radius * s;
-        (rs * sin_b, self.apex + radius - rs * s * one_minus_cos, rs * c * one_minus_cos)
+        (
+            rs * sin_b,
+            self.apex + radius - rs * s * one_minus_cos,
+            rs * c * one_minus_cos,
+        )
     }
 
     /// The turn by $\rho$ about the Y axis.
     #[inline(always)]
     fn turn(&self, v: (T, T, T)) -> (T, T, T) {
-        (v.0 * self.cos_r - v.2 * self.sin_r, v.1, v.0 * self.sin_r + v.2 * self.cos_r)
+        (
+            v.0 * self.cos_r - v.2 * self.sin_r,
+            v.1,
+            v.0 * self.sin_r + v.2 * self.cos_r,
+        )
     }
 
     /// $T(x, y)$ for one page point (module docs), through the math shim.
@@ -221,13 +239,22 @@ impl<T: Real> ConeCurl<T> {
         xs: &[T],
         ys: &[T],
     ) -> usize {
-        let n = xs.len().min(ys.len()).min(out_x.len()).min(out_y.len()).min(out_z.len());
+        let n = xs
+            .len()
+            .min(ys.len())
+            .min(out_x.len())
+            .min(out_y.len())
+            .min(out_z.len());
         let full = n - n % LANES;
         let blocks = out_x[..full]
             .chunks_exact_mut(LANES)
             .zip(out_y[..full].chunks_exact_mut(LANES))
             .zip(out_z[..full].chunks_exact_mut(LANES))
-            .zip(xs[..full].chunks_exact(LANES).zip(ys[..full].chunks_exact(LANES)));
+            .zip(
+                xs[..full]
+                    .chunks_exact(LANES)
+                    .zip(ys[..full].chunks_exact(LANES)),
+            );
         for (((ox, oy), oz), (x, y)) in blocks {
             let x = <[T; LANES]>::try_from(x).unwrap_or([T::ZERO; LANES]);
             let y = <[T; LANES]>::try_from(y).unwrap_or([T::ZERO; LANES]);

@@ -23,7 +23,9 @@ pub fn new<T: Real>(rest_lengths: [T; 2]) -> Result<CurveLaplacian<T>, KernelErr
     let p = inverse_length(rest_lengths[0], 0)?;
     let n = inverse_length(rest_lengths[1], 1)?;
     let s = T::TWO / (rest_lengths[0] + rest_lengths[1]);
-    Ok(SquaredStencil { weights: [-s * (p + n), s * p, s * n] })
+    Ok(SquaredStencil {
+        weights: [-s * (p + n), s * p, s * n],
+    })
 }
 
 /// Stencil with rest lengths measured on a rest configuration `[x_i, x_prev, x_next]`.

@@ -7,8 +7,8 @@
 //! * [`DogInnerStar`], nodes `[p0, xf, yf, xb, yb]` (x-forward, y-forward, x-back, y-back,
 //!   counter-clockwise), three rows, all four angles equal:
 //!   $$\varphi_1 = c(e_{xf},e_{yf}) - c(e_{yf},e_{xb}),\;
-//!     \varphi_2 = c(e_{yf},e_{xb}) - c(e_{xb},e_{yb}),\;
-//!     \varphi_3 = c(e_{xb},e_{yb}) - c(e_{xf},e_{yb}).$$
+//!   \varphi_2 = c(e_{yf},e_{xb}) - c(e_{xb},e_{yb}),\;
+//!   \varphi_3 = c(e_{xb},e_{yb}) - c(e_{xf},e_{yb}).$$
 //! * [`DogBoundaryStar`], nodes `[p0, xf, yf, xb]` (three consecutive neighbours), one row
 //!   $\varphi = c(e_{xf},e_{yf}) - c(e_{yf},e_{xb})$.
 //!
@@ -45,11 +45,17 @@ const INNER: StarLayout<4, 3> = StarLayout {
     rows: [[1, -1, 0, 0], [0, 1, -1, 0], [0, 0, 1, -1]],
 };
 
-const BOUNDARY: StarLayout<2, 1> = StarLayout { pairs: [[1, 2], [2, 3]], rows: [[1, -1]] };
+const BOUNDARY: StarLayout<2, 1> = StarLayout {
+    pairs: [[1, 2], [2, 3]],
+    rows: [[1, -1]],
+};
 
 impl<const A: usize, const R: usize> StarLayout<A, R> {
     fn edges(&self, a: usize) -> [Edge; 2] {
-        [Edge::new(0, self.pairs[a][0]), Edge::new(0, self.pairs[a][1])]
+        [
+            Edge::new(0, self.pairs[a][0]),
+            Edge::new(0, self.pairs[a][1]),
+        ]
     }
 
     fn value<T: Real, const N: usize>(&self, x: &NodeVecs<T, N>) -> [T; R] {
@@ -71,7 +77,10 @@ impl<const A: usize, const R: usize> StarLayout<A, R> {
         let mut out = [zero_vecs::<T, N>(); R];
         for a in 0..A {
             let edges = self.edges(a);
-            let c = EdgeCosine::<T>::with_gradient(edges[0].vector::<T, N>(x), edges[1].vector::<T, N>(x));
+            let c = EdgeCosine::<T>::with_gradient(
+                edges[0].vector::<T, N>(x),
+                edges[1].vector::<T, N>(x),
+            );
             for (row_out, row) in out.iter_mut().zip(&self.rows) {
                 if row[a] != 0 {
                     let w = T::from_f64(f64::from(row[a]));
@@ -82,7 +91,11 @@ impl<const A: usize, const R: usize> StarLayout<A, R> {
         out
     }
 
-    fn hessian<T: Real, const N: usize>(&self, x: &NodeVecs<T, N>, lambda: &[T; R]) -> Blocks<T, N> {
+    fn hessian<T: Real, const N: usize>(
+        &self,
+        x: &NodeVecs<T, N>,
+        lambda: &[T; R],
+    ) -> Blocks<T, N> {
         let mut out = zero_blocks::<T, N>();
         for a in 0..A {
             // Weight of angle a in sum_l lambda_l phi_l.
@@ -94,7 +107,10 @@ impl<const A: usize, const R: usize> StarLayout<A, R> {
                 continue;
             }
             let edges = self.edges(a);
-            let c = EdgeCosine::<T>::with_hessian(edges[0].vector::<T, N>(x), edges[1].vector::<T, N>(x));
+            let c = EdgeCosine::<T>::with_hessian(
+                edges[0].vector::<T, N>(x),
+                edges[1].vector::<T, N>(x),
+            );
             scatter_hessian(&mut out, edges, c.hessian_blocks(), mu);
         }
         out
@@ -169,8 +185,15 @@ pub struct FlatStarRemedy<T> {
 
 impl<T: Real> Default for FlatStarRemedy<T> {
     fn default() -> Self {
-        let offset = if T::EPSILON.to_f64() < 1e-10 { 1e-6 } else { 1e-3 };
-        Self { flatness_tolerance: T::from_f64(1e-2), relative_offset: T::from_f64(offset) }
+        let offset = if T::EPSILON.to_f64() < 1e-10 {
+            1e-6
+        } else {
+            1e-3
+        };
+        Self {
+            flatness_tolerance: T::from_f64(1e-2),
+            relative_offset: T::from_f64(offset),
+        }
     }
 }
 

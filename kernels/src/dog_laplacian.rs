@@ -42,7 +42,9 @@ pub fn inner<T: Real>(rest_lengths: [T; 4]) -> Result<DogLaplacianInner<T>, Kern
 pub fn boundary<T: Real>(rest_lengths: [T; 2]) -> Result<DogLaplacianBoundary<T>, KernelError> {
     let f = inverse_length(rest_lengths[0], 0)?;
     let b = inverse_length(rest_lengths[1], 1)?;
-    Ok(SquaredStencil { weights: [T::TWO * (f + b), -T::TWO * f, -T::TWO * b] })
+    Ok(SquaredStencil {
+        weights: [T::TWO * (f + b), -T::TWO * f, -T::TWO * b],
+    })
 }
 
 /// Inner stencil with the rest lengths measured on a rest configuration `[p0, xf, yf, xb, yb]`.

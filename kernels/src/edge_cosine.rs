@@ -57,7 +57,11 @@ impl<T: Real> EdgeCosine<T> {
     #[must_use]
     pub fn value(u: T::Vec3, v: T::Vec3) -> T {
         let (a, b) = (math::length::<T>(u), math::length::<T>(v));
-        if degenerate(a, b) { T::ZERO } else { u.dot(v) / (a * b) }
+        if degenerate(a, b) {
+            T::ZERO
+        } else {
+            u.dot(v) / (a * b)
+        }
     }
 
     /// Value and gradient; the Hessian fields are left zero.

@@ -29,7 +29,10 @@ impl fmt::Display for KernelError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::NonPositiveRestLength { index } => {
-                write!(f, "rest length of edge {index} is not a positive finite length")
+                write!(
+                    f,
+                    "rest length of edge {index} is not a positive finite length"
+                )
             }
             Self::NonFiniteParameter { name } => write!(f, "parameter `{name}` is not finite"),
             Self::OutOfRange { name } => write!(f, "parameter `{name}` is out of its range"),
@@ -43,7 +46,11 @@ use crate::real::Real;
 
 /// `Ok(v)` if `v` is finite, else [`KernelError::NonFiniteParameter`].
 pub(crate) fn finite<T: Real>(v: T, name: &'static str) -> Result<T, KernelError> {
-    if v.is_finite() { Ok(v) } else { Err(KernelError::NonFiniteParameter { name }) }
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(KernelError::NonFiniteParameter { name })
+    }
 }
 
 /// `Ok(1/l)` if `l` is a usable rest length, else [`KernelError::NonPositiveRestLength`].

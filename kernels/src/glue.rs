@@ -38,19 +38,38 @@ const SIDES: [Edge; 2] = [Edge::new(1, 0), Edge::new(2, 3)];
 /// `R` (rotate +90 degrees in XY, drop Z) and `P` (drop Z).
 fn maps<T: Real>() -> (T::Mat3, T::Mat3) {
     let [ex, ey, _] = T::Vec3::AXES;
-    (T::Mat3::outer(ey, ex) - T::Mat3::outer(ex, ey), T::Mat3::outer(ex, ex) + T::Mat3::outer(ey, ey))
+    (
+        T::Mat3::outer(ey, ex) - T::Mat3::outer(ex, ey),
+        T::Mat3::outer(ex, ex) + T::Mat3::outer(ey, ey),
+    )
 }
 
 /// $g = \langle n, d\rangle$ for one side, with node-space gradient and (optionally) the
 /// edge-space Hessian blocks.
-fn side<T: Real>(x: &NodeVecs<T, 4>, side: Edge, hessian: bool) -> (T, NodeVecs<T, 4>, [[T::Mat3; 2]; 2]) {
+fn side<T: Real>(
+    x: &NodeVecs<T, 4>,
+    side: Edge,
+    hessian: bool,
+) -> (T, NodeVecs<T, 4>, [[T::Mat3; 2]; 2]) {
     let (r, p) = maps::<T>();
     let (u, v) = (r * BINDING.vector::<T, 4>(x), p * side.vector::<T, 4>(x));
-    let c = if hessian { EdgeCosine::<T>::with_hessian(u, v) } else { EdgeCosine::<T>::with_gradient(u, v) };
+    let c = if hessian {
+        EdgeCosine::<T>::with_hessian(u, v)
+    } else {
+        EdgeCosine::<T>::with_gradient(u, v)
+    };
     let rt = r.transposed();
     let mut grad = zero_vecs::<T, 4>();
-    scatter_gradient(&mut grad, [BINDING, side], [rt * c.grad_u, p * c.grad_v], T::ONE);
-    let h = [[rt * c.h_uu * r, rt * c.h_uv * p], [p * c.h_uv.transposed() * r, p * c.h_vv * p]];
+    scatter_gradient(
+        &mut grad,
+        [BINDING, side],
+        [rt * c.grad_u, p * c.grad_v],
+        T::ONE,
+    );
+    let h = [
+        [rt * c.h_uu * r, rt * c.h_uv * p],
+        [p * c.h_uv.transposed() * r, p * c.h_vv * p],
+    ];
     (c.value, grad, h)
 }
 

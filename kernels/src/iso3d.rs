@@ -28,9 +28,13 @@ impl<T: Real> Iso3d<T> {
     pub fn new(rest_length: T) -> Result<Self, KernelError> {
         let l = finite(rest_length, "rest_length")?;
         if l < T::ZERO {
-            return Err(KernelError::OutOfRange { name: "rest_length" });
+            return Err(KernelError::OutOfRange {
+                name: "rest_length",
+            });
         }
-        Ok(Self { rest_length_sq: l * l })
+        Ok(Self {
+            rest_length_sq: l * l,
+        })
     }
 
     fn strain(&self, x: &NodeVecs<T, 2>) -> (T::Vec3, T) {

@@ -102,15 +102,24 @@ mod tests {
             let x = T::from_f64(s * s * s * 1.0e4 * core::f64::consts::PI);
             let (sl, cl) = sin_cos(x);
             let (sr, cr) = (math::sin(x).to_f64(), math::cos(x).to_f64());
-            worst = worst.max((sl.to_f64() - sr).abs()).max((cl.to_f64() - cr).abs());
+            worst = worst
+                .max((sl.to_f64() - sr).abs())
+                .max((cl.to_f64() - cr).abs());
         }
         let scale = T::EPSILON.to_f64() * x_scale::<T>();
-        assert!(worst <= tol_ulp * scale, "sin_cos worst abs error {worst:e}");
+        assert!(
+            worst <= tol_ulp * scale,
+            "sin_cos worst abs error {worst:e}"
+        );
     }
 
     /// Reduction error grows with |x|: allow the ulp of the largest argument.
     fn x_scale<T: Real>() -> f64 {
-        if T::EPSILON.to_f64() < 1e-10 { 1.0 } else { 4.0e4 }
+        if T::EPSILON.to_f64() < 1e-10 {
+            1.0
+        } else {
+            4.0e4
+        }
     }
 
     #[test]
@@ -129,7 +138,10 @@ mod tests {
                 worst = worst.max(err);
             }
         }
-        assert!(worst <= 4.0 * T::EPSILON.to_f64() * 4.0, "atan2 worst {worst:e}");
+        assert!(
+            worst <= 4.0 * T::EPSILON.to_f64() * 4.0,
+            "atan2 worst {worst:e}"
+        );
         assert_eq!(atan2(T::ZERO, T::ZERO), T::ZERO);
     }
 

@@ -54,7 +54,11 @@ pub struct Spring<T> {
 fn direction<T: Real>(x: &NodeVecs<T, 2>) -> Option<(T::Vec3, T)> {
     let d = x[0] - x[1];
     let len = math::length::<T>(d);
-    if len < T::LENGTH_FLOOR { None } else { Some((d / len, len)) }
+    if len < T::LENGTH_FLOOR {
+        None
+    } else {
+        Some((d / len, len))
+    }
 }
 
 impl<T: Real> Spring<T> {
@@ -66,12 +70,17 @@ impl<T: Real> Spring<T> {
         let l = finite(rest_length, "rest_length")?;
         let k = finite(stiffness, "stiffness")?;
         if l < T::ZERO {
-            return Err(KernelError::OutOfRange { name: "rest_length" });
+            return Err(KernelError::OutOfRange {
+                name: "rest_length",
+            });
         }
         if k < T::ZERO {
             return Err(KernelError::OutOfRange { name: "stiffness" });
         }
-        Ok(Self { rest_length: l, stiffness: k })
+        Ok(Self {
+            rest_length: l,
+            stiffness: k,
+        })
     }
 
     /// Spring forces `[F_i, F_j]` $= -\nabla V$.

@@ -14,7 +14,6 @@ use folio_kernels::term::{Blocks, NodeVecs};
 use folio_kernels::{Constraint, Potential, Real};
 use glam::{DMat3, DQuat, DVec3};
 
-
 /// SplitMix64: a tiny seeded generator, so every "random" test is reproducible.
 #[derive(Clone, Debug)]
 pub struct Rng(u64);
@@ -43,7 +42,11 @@ impl Rng {
 
     /// A vector with components uniform in `[-r, r)`.
     pub fn vec(&mut self, r: f64) -> DVec3 {
-        DVec3::new(self.uniform(-r, r), self.uniform(-r, r), self.uniform(-r, r))
+        DVec3::new(
+            self.uniform(-r, r),
+            self.uniform(-r, r),
+            self.uniform(-r, r),
+        )
     }
 
     /// A uniformly random unit vector.
@@ -60,34 +63,27 @@ impl Rng {
     /// A uniformly random rotation.
     pub fn rotation(&mut self) -> DQuat {
         let axis = self.unit();
-        DQuat::from_axis_angle(axis, self.uniform(-std::f64::consts::PI, std::f64::consts::PI))
+        DQuat::from_axis_angle(
+            axis,
+            self.uniform(-core::f64::consts::PI, core::f64::consts::PI),
+        )
     }
 }
 
 /// Relative error as described in the crate docs.
 #[must_use]
 pub fn rel_err(analytic: &[f64], fd: &[f64]) -> f64 {
-    let diff = analytic.iter().zip(fd).map(|(a, f)| (a - f).abs()).fold(0.0, f64::max);
-    let scale = analytic.iter().chain(fd).map(|v| v.abs()).fold(1e-2, f64::max);
+    let diff = analytic
+        .iter()
+        .zip(fd)
+        .map(|(a, f)| (a - f).abs())
+        .fold(0.0, f64::max);
+    let scale = analytic
+        .iter()
+        .chain(fd)
+        .map(|v| v.abs())
+        .fold(1e-2, f64::max);
     diff / scale
-}
-
-fn flatten_vecs<const N: usize>(v: &NodeVecs<f64, N>) -> Vec<f64> {
-    v.iter().flat_map(|p| p.to_array()).collect()
-}
-
-fn flatten_blocks<const N: usize>(h: &Blocks<f64, N>) -> Vec<f64> {
-    let mut out = Vec::with_capacity(9 * N * N);
-    for a in 0..N {
-        for i in 0..3 {
-            for b in 0..N {
-                for j in 0..3 {
-                    out.push(h[a][b].entry(i, j));
-                }
-            }
-        }
-    }
-    out
 }
 
 /// Step for coordinate value `x`.
@@ -144,7 +140,7 @@ impl FdErrors {
 }
 
 fn asymmetry<const N: usize>(h: &Blocks<f64, N>) -> f64 {
-    let flat = flatten_blocks(h);
+    let flat = flat_blocks::<f64, N>(h);
     let n = 3 * N;
     let mut t = vec![0.0; n * n];
     for r in 0..n {
@@ -156,12 +152,19 @@ fn asymmetry<const N: usize>(h: &Blocks<f64, N>) -> f64 {
 }
 
 /// Finite-difference check of a potential at `x`.
-pub fn check_potential<P: Potential<f64, N>, const N: usize>(p: &P, x: &NodeVecs<f64, N>) -> FdErrors {
-    let g = flatten_vecs(&p.gradient(x));
+pub fn check_potential<P: Potential<f64, N>, const N: usize>(
+    p: &P,
+    x: &NodeVecs<f64, N>,
+) -> FdErrors {
+    let g = flat_vecs::<f64, N>(&p.gradient(x));
     let g_fd = fd_jacobian(x, |y| vec![p.value(y)]);
     let h = p.hessian(x);
-    let h_fd = fd_jacobian(x, |y| flatten_vecs(&p.gradient(y)));
-    FdErrors { first: rel_err(&g, &g_fd), second: rel_err(&flatten_blocks(&h), &h_fd), asymmetry: asymmetry(&h) }
+    let h_fd = fd_jacobian(x, |y| flat_vecs::<f64, N>(&p.gradient(y)));
+    FdErrors {
+        first: rel_err(&g, &g_fd),
+        second: rel_err(&flat_blocks::<f64, N>(&h), &h_fd),
+        asymmetry: asymmetry(&h),
+    }
 }
 
 /// Finite-difference check of a constraint at `x` with multipliers `lambda`.
@@ -170,7 +173,7 @@ pub fn check_constraint<C: Constraint<f64, R, N>, const R: usize, const N: usize
     x: &NodeVecs<f64, N>,
     lambda: &[f64; R],
 ) -> FdErrors {
-    let jac: Vec<f64> = c.jacobian(x).iter().flat_map(flatten_vecs).collect();
+    let jac: Vec<f64> = c.jacobian(x).iter().flat_map(flat_vecs::<f64, N>).collect();
     let jac_fd = fd_jacobian(x, |y| c.value(y).to_vec());
     let weighted_grad = |y: &NodeVecs<f64, N>| {
         let j = c.jacobian(y);
@@ -180,11 +183,15 @@ pub fn check_constraint<C: Constraint<f64, R, N>, const R: usize, const N: usize
                 *gk += *jk * *l;
             }
         }
-        flatten_vecs(&g)
+        flat_vecs::<f64, N>(&g)
     };
     let h = c.hessian(x, lambda);
     let h_fd = fd_jacobian(x, weighted_grad);
-    FdErrors { first: rel_err(&jac, &jac_fd), second: rel_err(&flatten_blocks(&h), &h_fd), asymmetry: asymmetry(&h) }
+    FdErrors {
+        first: rel_err(&jac, &jac_fd),
+        second: rel_err(&flat_blocks::<f64, N>(&h), &h_fd),
+        asymmetry: asymmetry(&h),
+    }
 }
 
 /// Converts an `f64` local block to `f32`.
@@ -198,26 +205,30 @@ pub fn to_f32<const N: usize>(x: &NodeVecs<f64, N>) -> NodeVecs<f32, N> {
 #[must_use]
 pub fn precision_gap(f32s: &[f32], f64s: &[f64]) -> f64 {
     let as64: Vec<f64> = f32s.iter().map(|&v| f64::from(v)).collect();
-    let diff = as64.iter().zip(f64s).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+    let diff = as64
+        .iter()
+        .zip(f64s)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
     diff / f64s.iter().map(|v| v.abs()).fold(1.0, f64::max)
 }
 
 /// Flattens node vectors of either precision into `f64`s.
 #[must_use]
 pub fn flat_vecs<T: Real, const N: usize>(v: &NodeVecs<T, N>) -> Vec<f64> {
-    v.iter().flat_map(|p| [p.x(), p.y(), p.z()].map(Real::to_f64)).collect()
+    v.iter()
+        .flat_map(|p| [p.x(), p.y(), p.z()].map(Real::to_f64))
+        .collect()
 }
 
 /// Flattens Hessian blocks of either precision into `f64`s (row-major over `3N x 3N`).
 #[must_use]
 pub fn flat_blocks<T: Real, const N: usize>(h: &Blocks<T, N>) -> Vec<f64> {
     let mut out = Vec::with_capacity(9 * N * N);
-    for a in 0..N {
+    for row in h {
         for i in 0..3 {
-            for b in 0..N {
-                for j in 0..3 {
-                    out.push(h[a][b].entry(i, j).to_f64());
-                }
+            for block in row {
+                out.extend((0..3).map(|j| block.entry(i, j).to_f64()));
             }
         }
     }
@@ -240,7 +251,11 @@ pub fn rotate_blocks<const N: usize>(h: &Blocks<f64, N>, q: DQuat) -> Blocks<f64
 /// A perturbed star around `p0`: neighbours at `p0 + len * dir` with the given directions,
 /// lengths uniform in `[0.5, 1.5]` and directions jittered by `jitter`.
 #[must_use]
-pub fn jittered_star<const N: usize>(rng: &mut Rng, dirs: [DVec3; N], jitter: f64) -> NodeVecs<f64, N> {
+pub fn jittered_star<const N: usize>(
+    rng: &mut Rng,
+    dirs: [DVec3; N],
+    jitter: f64,
+) -> NodeVecs<f64, N> {
     let p0 = rng.vec(2.0);
     let mut x = [p0; N];
     for (k, d) in dirs.iter().enumerate().skip(1) {
@@ -280,11 +295,22 @@ pub fn grid_stars(n: usize, m: usize) -> Vec<GridStar> {
             let ring = [nb(1, 0), nb(0, 1), nb(-1, 0), nb(0, -1)];
             let c = i + n * j;
             match ring.iter().filter(|q| q.is_some()).count() {
-                4 => out.push(GridStar::Inner([c, ring[0].unwrap(), ring[1].unwrap(), ring[2].unwrap(), ring[3].unwrap()])),
+                4 => out.push(GridStar::Inner([
+                    c,
+                    ring[0].unwrap(),
+                    ring[1].unwrap(),
+                    ring[2].unwrap(),
+                    ring[3].unwrap(),
+                ])),
                 3 => {
                     // Rotate the ring so that the missing neighbour comes last.
                     let k = (ring.iter().position(Option::is_none).unwrap() + 1) % 4;
-                    out.push(GridStar::Boundary([c, ring[k].unwrap(), ring[(k + 1) % 4].unwrap(), ring[(k + 2) % 4].unwrap()]));
+                    out.push(GridStar::Boundary([
+                        c,
+                        ring[k].unwrap(),
+                        ring[(k + 1) % 4].unwrap(),
+                        ring[(k + 2) % 4].unwrap(),
+                    ]));
                 }
                 _ => {}
             }

@@ -50,7 +50,10 @@ impl<T: Real> Terms<T> {
             dog_inner: DogInnerStar::new(),
             dog_boundary: DogBoundaryStar::new(),
             // The same offset in both precisions, so that the two compute one function.
-            remedy: FlatStarRemedy { relative_offset: T::from_f64(1e-3), ..FlatStarRemedy::default() },
+            remedy: FlatStarRemedy {
+                relative_offset: T::from_f64(1e-3),
+                ..FlatStarRemedy::default()
+            },
             lap_inner: dog_laplacian::inner([t(0), t(1), t(2), t(3)]).unwrap(),
             lap_boundary: dog_laplacian::boundary([t(4), t(5)]).unwrap(),
             curve: curve_laplacian::new([t(6), t(7)]).unwrap(),
@@ -67,7 +70,11 @@ impl<T: Real> Terms<T> {
 }
 
 fn pot<T: Real, P: Potential<T, N>, const N: usize>(p: &P, x: &NodeVecs<T, N>) -> [Vec<f64>; 3] {
-    [vec![p.value(x).to_f64()], flat_vecs::<T, N>(&p.gradient(x)), flat_blocks::<T, N>(&p.hessian(x))]
+    [
+        vec![p.value(x).to_f64()],
+        flat_vecs::<T, N>(&p.gradient(x)),
+        flat_blocks::<T, N>(&p.hessian(x)),
+    ]
 }
 
 fn con<T: Real, C: Constraint<T, R, N>, const R: usize, const N: usize>(
@@ -77,7 +84,11 @@ fn con<T: Real, C: Constraint<T, R, N>, const R: usize, const N: usize>(
 ) -> [Vec<f64>; 3] {
     let lam: [T; R] = core::array::from_fn(|k| lambda[k]);
     let jac = c.jacobian(x).iter().flat_map(flat_vecs::<T, N>).collect();
-    [c.value(x).map(Real::to_f64).to_vec(), jac, flat_blocks::<T, N>(&c.hessian(x, &lam))]
+    [
+        c.value(x).map(Real::to_f64).to_vec(),
+        jac,
+        flat_blocks::<T, N>(&c.hessian(x, &lam)),
+    ]
 }
 
 fn prefix<T: Real, const N: usize>(x: &NodeVecs<T, 5>) -> NodeVecs<T, N> {
@@ -90,15 +101,32 @@ pub type Outputs = [Vec<f64>; 3];
 /// Evaluates every term on (a prefix of) the 5-node block `x` with multipliers `lambda`
 /// (at least 3). Returns `(name, outputs)` per term.
 #[must_use]
-pub fn evaluate_all<T: Real>(t: &Terms<T>, x: &NodeVecs<T, 5>, lambda: &[T]) -> Vec<(&'static str, Outputs)> {
+pub fn evaluate_all<T: Real>(
+    t: &Terms<T>,
+    x: &NodeVecs<T, 5>,
+    lambda: &[T],
+) -> Vec<(&'static str, Outputs)> {
     let x4 = prefix::<T, 4>(x);
     let (x3, x2, x1) = (prefix::<T, 3>(x), prefix::<T, 2>(x), prefix::<T, 1>(x));
-    let remedied_inner: Vec<f64> = t.remedy.inner_jacobian(x).iter().flat_map(flat_vecs::<T, 5>).collect();
-    let remedied_boundary: Vec<f64> = t.remedy.boundary_jacobian(&x4).iter().flat_map(flat_vecs::<T, 4>).collect();
+    let remedied_inner: Vec<f64> = t
+        .remedy
+        .inner_jacobian(x)
+        .iter()
+        .flat_map(flat_vecs::<T, 5>)
+        .collect();
+    let remedied_boundary: Vec<f64> = t
+        .remedy
+        .boundary_jacobian(&x4)
+        .iter()
+        .flat_map(flat_vecs::<T, 4>)
+        .collect();
     vec![
         ("DOG inner star", con(&t.dog_inner, x, lambda)),
         ("DOG boundary star", con(&t.dog_boundary, &x4, lambda)),
-        ("DOG flat-star remedy", [vec![], [remedied_inner, remedied_boundary].concat(), vec![]]),
+        (
+            "DOG flat-star remedy",
+            [vec![], [remedied_inner, remedied_boundary].concat(), vec![]],
+        ),
         ("DOG Laplacian inner", pot(&t.lap_inner, x)),
         ("DOG Laplacian boundary", pot(&t.lap_boundary, &x3)),
         ("curve Laplacian", pot(&t.curve, &x3)),

@@ -43,7 +43,9 @@ fn generalized_cylinder_along_the_grid_is_an_exact_dog() {
         // Extruded in equal steps along Y, then placed rigidly anywhere.
         let q = rng.rotation();
         let t = rng.vec(5.0);
-        let phi = max_dog_residual(n, m, |i, j| q * (section[i] + DVec3::Y * (step * j as f64)) + t);
+        let phi = max_dog_residual(n, m, |i, j| {
+            q * (section[i] + DVec3::Y * (step * j as f64)) + t
+        });
         assert!(phi <= 1e-12, "cylinder |phi| = {phi:e}");
     }
 }
@@ -55,14 +57,20 @@ fn residual_at(h: f64, surface: &impl Fn(f64, f64) -> DVec3) -> f64 {
 }
 
 fn residuals(surface: impl Fn(f64, f64) -> DVec3) -> Vec<f64> {
-    [0.2, 0.1, 0.05, 0.025].iter().map(|&h| residual_at(h, &surface)).collect()
+    [0.2, 0.1, 0.05, 0.025]
+        .iter()
+        .map(|&h| residual_at(h, &surface))
+        .collect()
 }
 
 fn assert_second_order(name: &str, r: &[f64]) {
     println!("{name}: max|phi| at h = 0.2, 0.1, 0.05, 0.025: {r:?}");
     for w in r.windows(2) {
         let ratio = w[0] / w[1];
-        assert!((3.0..=5.0).contains(&ratio), "{name}: ratio {ratio} per halving, expected ~4");
+        assert!(
+            (3.0..=5.0).contains(&ratio),
+            "{name}: ratio {ratio} per halving, expected ~4"
+        );
     }
 }
 
@@ -80,7 +88,11 @@ fn cylinder_at_an_angle_to_the_grid_is_a_dog_to_second_order() {
     let (c, s, radius) = (0.5f64.cos(), 0.5f64.sin(), 1.5);
     let r = residuals(|x, y| {
         let (u, v) = (c * x - s * y, s * x + c * y);
-        DVec3::new(radius * (u / radius).sin(), v, radius * (1.0 - (u / radius).cos()))
+        DVec3::new(
+            radius * (u / radius).sin(),
+            v,
+            radius * (1.0 - (u / radius).cos()),
+        )
     });
     assert_second_order("oblique cylinder", &r);
 }
@@ -93,7 +105,11 @@ fn sphere_is_not_a_dog_at_any_spacing() {
         let (u, v) = (x - 1.5, y - 1.5);
         let d = (u * u + v * v).sqrt();
         let (az, t) = (v.atan2(u), d / radius);
-        DVec3::new(radius * t.sin() * az.cos(), radius * t.sin() * az.sin(), radius * t.cos())
+        DVec3::new(
+            radius * t.sin() * az.cos(),
+            radius * t.sin() * az.sin(),
+            radius * t.cos(),
+        )
     });
     println!("sphere: max|phi| at h = 0.2, 0.1, 0.05, 0.025: {r:?}");
     for (k, &phi) in r.iter().enumerate() {

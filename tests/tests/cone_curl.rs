@@ -1,10 +1,10 @@
 //! The conical page curl (seed 001): isometry, apex and limit parameters, batched map against
 //! the per-point map, precision agreement and non-finite input.
 
+use core::f64::consts::{FRAC_PI_2, PI};
 use folio_kernels::cone::{ConeCurl, THETA_MIN};
 use folio_tests::Rng;
 use glam::DVec3;
-use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Worst relative change of neighbour distances on a grid of spacing `h` over the page
 /// [0, 12] x [0, 16] (seed 000's page size), for edges farther than 1 from the apex (the
@@ -35,11 +35,17 @@ fn cone_map_is_an_isometry_to_second_order() {
     // Apex below the page (the seed's use), inside its height, and a tight cone.
     for (theta, apex, rho) in [(0.7, -6.0, 0.4), (1.2, 4.0, 2.0), (0.3, -20.0, 3.0)] {
         let curl = ConeCurl::new(theta, apex, rho);
-        let e: Vec<f64> = [0.2, 0.1, 0.05].iter().map(|&h| worst_stretch(&curl, h)).collect();
+        let e: Vec<f64> = [0.2, 0.1, 0.05]
+            .iter()
+            .map(|&h| worst_stretch(&curl, h))
+            .collect();
         println!("theta {theta} apex {apex}: worst relative edge change {e:?}");
         for w in e.windows(2) {
             let ratio = w[0] / w[1];
-            assert!((3.0..=5.0).contains(&ratio), "edge error ratio {ratio}, expected ~4");
+            assert!(
+                (3.0..=5.0).contains(&ratio),
+                "edge error ratio {ratio}, expected ~4"
+            );
         }
     }
 }
@@ -48,11 +54,18 @@ fn cone_map_is_an_isometry_to_second_order() {
 fn distance_to_the_apex_is_preserved_exactly() {
     let mut rng = Rng::new(30);
     for _ in 0..200 {
-        let curl = ConeCurl::new(rng.uniform(0.0, 1.6), rng.uniform(-10.0, 10.0), rng.uniform(-4.0, 4.0));
+        let curl = ConeCurl::new(
+            rng.uniform(0.0, 1.6),
+            rng.uniform(-10.0, 10.0),
+            rng.uniform(-4.0, 4.0),
+        );
         let (x, y) = (rng.uniform(0.0, 12.0), rng.uniform(-16.0, 16.0));
         let radius = (x * x + (y - curl.apex()).powi(2)).sqrt();
         let d = (curl.map_point(x, y) - DVec3::new(0.0, curl.apex(), 0.0)).length();
-        assert!((d - radius).abs() <= 1e-12 * (1.0 + radius), "{d} vs {radius}");
+        assert!(
+            (d - radius).abs() <= 1e-12 * (1.0 + radius),
+            "{d} vs {radius}"
+        );
     }
 }
 
@@ -69,18 +82,36 @@ fn flat_cone_is_the_turned_page() {
 
 #[test]
 fn apex_and_limit_parameters_give_finite_output() {
-    let thetas = [0.0, 1e-300, THETA_MIN / 10.0, THETA_MIN, 1e-3, FRAC_PI_2, 2.0, -1.0];
+    let thetas = [
+        0.0,
+        1e-300,
+        THETA_MIN / 10.0,
+        THETA_MIN,
+        1e-3,
+        FRAC_PI_2,
+        2.0,
+        -1.0,
+    ];
     for theta in thetas {
         for apex in [-1e6, -5.0, 0.0, 7.5] {
             let curl = ConeCurl::new(theta, apex, 1.0);
             // The apex itself maps to the apex.
             let a = curl.map_point(0.0, apex);
             assert!((a - DVec3::new(0.0, apex, 0.0)).length() <= 1e-9 * (1.0 + apex.abs()));
-            for (x, y) in [(0.0, apex), (0.0, apex - 3.0), (-0.0, apex - 3.0), (12.0, 16.0), (1e-12, apex)] {
+            for (x, y) in [
+                (0.0, apex),
+                (0.0, apex - 3.0),
+                (-0.0, apex - 3.0),
+                (12.0, 16.0),
+                (1e-12, apex),
+            ] {
                 let p = curl.map_point(x, y);
                 let j = curl.jacobian(x, y);
                 assert!(p.is_finite(), "theta {theta} apex {apex} ({x},{y}) -> {p}");
-                assert!(j.iter().all(|c| c.is_finite()), "Jacobian not finite: {j:?}");
+                assert!(
+                    j.iter().all(|c| c.is_finite()),
+                    "Jacobian not finite: {j:?}"
+                );
             }
         }
     }
@@ -119,8 +150,15 @@ fn batch_gap<T: folio_kernels::Real>(theta: f64, apex: f64, rho: f64, pts: &[(f6
     let reference = ConeCurl::<f64>::new(theta, apex, rho);
     let xs: Vec<T> = pts.iter().map(|p| T::from_f64(p.0)).collect();
     let ys: Vec<T> = pts.iter().map(|p| T::from_f64(p.1)).collect();
-    let (mut ox, mut oy, mut oz) = (vec![T::ZERO; pts.len()], vec![T::ZERO; pts.len()], vec![T::ZERO; pts.len()]);
-    assert_eq!(curl.map_batch(&mut ox, &mut oy, &mut oz, &xs, &ys), pts.len());
+    let (mut ox, mut oy, mut oz) = (
+        vec![T::ZERO; pts.len()],
+        vec![T::ZERO; pts.len()],
+        vec![T::ZERO; pts.len()],
+    );
+    assert_eq!(
+        curl.map_batch(&mut ox, &mut oy, &mut oz, &xs, &ys),
+        pts.len()
+    );
     let mut worst: f64 = 0.0;
     for (k, &(x, y)) in pts.iter().enumerate() {
         // Against the f64 per-point map evaluated at the same (rounded) inputs.
@@ -134,9 +172,16 @@ fn batch_gap<T: folio_kernels::Real>(theta: f64, apex: f64, rho: f64, pts: &[(f6
 #[test]
 fn batched_map_matches_the_per_point_map() {
     let mut rng = Rng::new(32);
-    let pts: Vec<(f64, f64)> = (0..1001).map(|_| (rng.uniform(0.0, 12.0), rng.uniform(-4.0, 16.0))).collect();
+    let pts: Vec<(f64, f64)> = (0..1001)
+        .map(|_| (rng.uniform(0.0, 12.0), rng.uniform(-4.0, 16.0)))
+        .collect();
     let (mut w64, mut w32): (f64, f64) = (0.0, 0.0);
-    for &(theta, apex, rho) in &[(0.7, -6.0, 0.4), (0.05, -2.0, 1.0), (FRAC_PI_2, 0.0, PI), (1e-4, -1.0, 0.0)] {
+    for &(theta, apex, rho) in &[
+        (0.7, -6.0, 0.4),
+        (0.05, -2.0, 1.0),
+        (FRAC_PI_2, 0.0, PI),
+        (1e-4, -1.0, 0.0),
+    ] {
         w64 = w64.max(batch_gap::<f64>(theta, apex, rho, &pts));
         w32 = w32.max(batch_gap::<f32>(theta, apex, rho, &pts));
     }
@@ -159,7 +204,11 @@ fn f32_map_and_jacobian_agree_with_f64() {
     let mut rng = Rng::new(33);
     let (mut map_gap, mut jac_gap): (f64, f64) = (0.0, 0.0);
     for _ in 0..500 {
-        let (t, a, r) = (rng.uniform(0.2, 1.5), rng.uniform(-10.0, 0.0), rng.uniform(-3.0, 3.0));
+        let (t, a, r) = (
+            rng.uniform(0.2, 1.5),
+            rng.uniform(-10.0, 0.0),
+            rng.uniform(-3.0, 3.0),
+        );
         let (x, y) = (rng.uniform(0.0, 12.0), rng.uniform(0.0, 16.0));
         let c64 = ConeCurl::new(t, a, r);
         let c32 = ConeCurl::new(t as f32, a as f32, r as f32);
@@ -178,9 +227,21 @@ fn f32_map_and_jacobian_agree_with_f64() {
 
 #[test]
 fn non_finite_input_gives_nan_never_a_panic() {
-    assert!(ConeCurl::new(f64::NAN, 0.0, 0.0).map_point(1.0, 1.0).is_nan());
-    assert!(ConeCurl::new(0.5, f64::NAN, 0.0).map_point(1.0, 1.0).is_nan());
-    assert!(ConeCurl::new(0.5, 0.0, f64::INFINITY).map_point(1.0, 1.0).is_nan());
+    assert!(
+        ConeCurl::new(f64::NAN, 0.0, 0.0)
+            .map_point(1.0, 1.0)
+            .is_nan()
+    );
+    assert!(
+        ConeCurl::new(0.5, f64::NAN, 0.0)
+            .map_point(1.0, 1.0)
+            .is_nan()
+    );
+    assert!(
+        ConeCurl::new(0.5, 0.0, f64::INFINITY)
+            .map_point(1.0, 1.0)
+            .is_nan()
+    );
     let curl = ConeCurl::new(0.5, -1.0, 0.0);
     assert!(curl.map_point(f64::NAN, 1.0).is_nan());
     assert!(!curl.map_point(1.0, f64::INFINITY).is_finite());

@@ -13,26 +13,78 @@ use glam::DVec3;
 
 #[test]
 fn bad_rest_lengths_name_the_edge() {
-    assert_eq!(dog_laplacian::inner([1.0, 1.0, 0.0, 1.0]).unwrap_err(), KernelError::NonPositiveRestLength { index: 2 });
-    assert_eq!(dog_laplacian::inner([1.0, -1.0, 1.0, 1.0]).unwrap_err(), KernelError::NonPositiveRestLength { index: 1 });
-    assert_eq!(dog_laplacian::boundary([f64::NAN, 1.0]).unwrap_err(), KernelError::NonPositiveRestLength { index: 0 });
-    assert_eq!(curve_laplacian::new([1.0, f64::INFINITY]).unwrap_err(), KernelError::NonPositiveRestLength { index: 1 });
+    assert_eq!(
+        dog_laplacian::inner([1.0, 1.0, 0.0, 1.0]).unwrap_err(),
+        KernelError::NonPositiveRestLength { index: 2 }
+    );
+    assert_eq!(
+        dog_laplacian::inner([1.0, -1.0, 1.0, 1.0]).unwrap_err(),
+        KernelError::NonPositiveRestLength { index: 1 }
+    );
+    assert_eq!(
+        dog_laplacian::boundary([f64::NAN, 1.0]).unwrap_err(),
+        KernelError::NonPositiveRestLength { index: 0 }
+    );
+    assert_eq!(
+        curve_laplacian::new([1.0, f64::INFINITY]).unwrap_err(),
+        KernelError::NonPositiveRestLength { index: 1 }
+    );
     let coincident = [DVec3::ZERO, DVec3::ZERO, DVec3::X];
-    assert_eq!(curve_laplacian::from_rest::<f64>(&coincident).unwrap_err(), KernelError::NonPositiveRestLength { index: 0 });
-    assert!(dog_laplacian::inner([1e-200_f64, 1.0, 1.0, 1.0]).is_err(), "below the length floor");
+    assert_eq!(
+        curve_laplacian::from_rest::<f64>(&coincident).unwrap_err(),
+        KernelError::NonPositiveRestLength { index: 0 }
+    );
+    assert!(
+        dog_laplacian::inner([1e-200_f64, 1.0, 1.0, 1.0]).is_err(),
+        "below the length floor"
+    );
 }
 
 #[test]
 fn bad_parameters_are_typed_errors() {
-    assert_eq!(Iso2d::new(-1.0).unwrap_err(), KernelError::OutOfRange { name: "rest_length" });
-    assert_eq!(Iso3d::new(f64::NAN).unwrap_err(), KernelError::NonFiniteParameter { name: "rest_length" });
-    assert_eq!(Binding::new(1.5).unwrap_err(), KernelError::OutOfRange { name: "q" });
-    assert_eq!(Binding::new(f32::NAN).unwrap_err(), KernelError::NonFiniteParameter { name: "q" });
-    assert_eq!(Gravity::new(9.81, -1.0).unwrap_err(), KernelError::OutOfRange { name: "mass" });
-    assert_eq!(Gravity::new(f64::INFINITY, 1.0).unwrap_err(), KernelError::NonFiniteParameter { name: "g" });
-    assert_eq!(Spring::new(1.0, -2.0).unwrap_err(), KernelError::OutOfRange { name: "stiffness" });
-    assert_eq!(Fix::<f64>::new(DVec3::new(0.0, f64::NAN, 0.0)).unwrap_err(), KernelError::NonFiniteParameter { name: "target" });
-    assert_eq!(Positional::<f64>::new(DVec3::splat(f64::MAX)).map(|p| p.target), Ok(DVec3::splat(f64::MAX)));
+    assert_eq!(
+        Iso2d::new(-1.0).unwrap_err(),
+        KernelError::OutOfRange {
+            name: "rest_length"
+        }
+    );
+    assert_eq!(
+        Iso3d::new(f64::NAN).unwrap_err(),
+        KernelError::NonFiniteParameter {
+            name: "rest_length"
+        }
+    );
+    assert_eq!(
+        Binding::new(1.5).unwrap_err(),
+        KernelError::OutOfRange { name: "q" }
+    );
+    assert_eq!(
+        Binding::new(f32::NAN).unwrap_err(),
+        KernelError::NonFiniteParameter { name: "q" }
+    );
+    assert_eq!(
+        Gravity::new(9.81, -1.0).unwrap_err(),
+        KernelError::OutOfRange { name: "mass" }
+    );
+    assert_eq!(
+        Gravity::new(f64::INFINITY, 1.0).unwrap_err(),
+        KernelError::NonFiniteParameter { name: "g" }
+    );
+    assert_eq!(
+        Spring::new(1.0, -2.0).unwrap_err(),
+        KernelError::OutOfRange { name: "stiffness" }
+    );
+    assert_eq!(
+        Fix::<f64>::new(DVec3::new(0.0, f64::NAN, 0.0)).unwrap_err(),
+        KernelError::NonFiniteParameter { name: "target" }
+    );
+    assert_eq!(
+        Positional::<f64>::new(DVec3::splat(f64::MAX)).map(|p| p.target),
+        Ok(DVec3::splat(f64::MAX))
+    );
     // Messages name the problem.
-    assert_eq!(KernelError::OutOfRange { name: "q" }.to_string(), "parameter `q` is out of its range");
+    assert_eq!(
+        KernelError::OutOfRange { name: "q" }.to_string(),
+        "parameter `q` is out of its range"
+    );
 }

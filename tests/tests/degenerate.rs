@@ -17,7 +17,13 @@ fn v<T: Real>(x: f64, y: f64, z: f64) -> T::Vec3 {
 
 fn scenarios<T: Real>() -> Vec<(&'static str, NodeVecs<T, 5>)> {
     let o = v::<T>(0.3, -0.2, 0.1);
-    let star = [o, o + v::<T>(1.0, 0.0, 0.0), o + v::<T>(0.0, 1.0, 0.0), o + v::<T>(-1.0, 0.0, 0.0), o + v::<T>(0.0, -1.0, 0.0)];
+    let star = [
+        o,
+        o + v::<T>(1.0, 0.0, 0.0),
+        o + v::<T>(0.0, 1.0, 0.0),
+        o + v::<T>(-1.0, 0.0, 0.0),
+        o + v::<T>(0.0, -1.0, 0.0),
+    ];
     let floor = T::LENGTH_FLOOR;
     let big = T::COORD_MAX;
     let mut zero_edge = star;
@@ -27,7 +33,13 @@ fn scenarios<T: Real>() -> Vec<(&'static str, NodeVecs<T, 5>)> {
     let mut below_floor = star;
     below_floor[1] = o + T::Vec3::AXES[0] * (floor * T::HALF);
     let collinear = [0.0, 1.0, 2.0, -1.0, -2.0].map(|s| o + v::<T>(s, 2.0 * s, -s));
-    let huge = [star[0] * big, star[1] * big, star[2] * big, star[3] * big, star[4] * big];
+    let huge = [
+        star[0] * big,
+        star[1] * big,
+        star[2] * big,
+        star[3] * big,
+        star[4] * big,
+    ];
     let mut folded = star;
     folded[2] = star[1];
     vec![
@@ -48,7 +60,10 @@ fn finite_everywhere<T: Real>() {
     for (case, x) in scenarios::<T>() {
         for (name, outputs) in evaluate_all(&terms, &x, &lambda) {
             for out in &outputs {
-                assert!(out.iter().all(|e| e.is_finite()), "{name} on '{case}' gave {out:?}");
+                assert!(
+                    out.iter().all(|e| e.is_finite()),
+                    "{name} on '{case}' gave {out:?}"
+                );
             }
         }
     }
@@ -74,7 +89,10 @@ fn non_finite_propagates<T: Real>(bad: T) {
             // all coordinates of node 0.
             let reads = !((name == "gravity" && axis != 1) || (name == "binding" && axis == 2));
             if reads {
-                assert!(values.iter().any(|e| !e.is_finite()), "{name}: {bad} in axis {axis} gave finite {values:?}");
+                assert!(
+                    values.iter().any(|e| !e.is_finite()),
+                    "{name}: {bad} in axis {axis} gave finite {values:?}"
+                );
             }
         }
         x = scenarios::<T>()[0].1;

@@ -31,9 +31,21 @@ fn report(name: &str, e: FdErrors) {
         "{name:<28} first {:9.2e}   second {:9.2e}   asym {:9.2e}",
         e.first, e.second, e.asymmetry
     );
-    assert!(e.first <= FD_TOL, "{name}: first derivative error {:e}", e.first);
-    assert!(e.second <= FD_TOL, "{name}: second derivative error {:e}", e.second);
-    assert!(e.asymmetry <= SYM_TOL, "{name}: Hessian asymmetry {:e}", e.asymmetry);
+    assert!(
+        e.first <= FD_TOL,
+        "{name}: first derivative error {:e}",
+        e.first
+    );
+    assert!(
+        e.second <= FD_TOL,
+        "{name}: second derivative error {:e}",
+        e.second
+    );
+    assert!(
+        e.asymmetry <= SYM_TOL,
+        "{name}: Hessian asymmetry {:e}",
+        e.asymmetry
+    );
 }
 
 fn potentials<P: Potential<f64, N>, const N: usize>(
@@ -71,7 +83,9 @@ fn lengths<const K: usize>(rng: &mut Rng) -> [f64; K] {
 
 #[test]
 fn dog_inner_star() {
-    constraints("DOG inner star", 1, |r| (DogInnerStar::new(), jittered_star(r, INNER_DIRS, 0.7)));
+    constraints("DOG inner star", 1, |r| {
+        (DogInnerStar::new(), jittered_star(r, INNER_DIRS, 0.7))
+    });
 }
 
 #[test]
@@ -84,7 +98,10 @@ fn dog_boundary_star() {
 #[test]
 fn dog_laplacian_inner() {
     potentials("DOG Laplacian inner", 3, |r| {
-        (dog_laplacian::inner(lengths(r)).unwrap(), jittered_star(r, INNER_DIRS, 0.7))
+        (
+            dog_laplacian::inner(lengths(r)).unwrap(),
+            jittered_star(r, INNER_DIRS, 0.7),
+        )
     });
 }
 
@@ -92,7 +109,10 @@ fn dog_laplacian_inner() {
 fn dog_laplacian_boundary() {
     potentials("DOG Laplacian boundary", 4, |r| {
         let dirs = [DVec3::ZERO, DVec3::X, DVec3::NEG_X];
-        (dog_laplacian::boundary(lengths(r)).unwrap(), jittered_star(r, dirs, 0.7))
+        (
+            dog_laplacian::boundary(lengths(r)).unwrap(),
+            jittered_star(r, dirs, 0.7),
+        )
     });
 }
 
@@ -100,25 +120,38 @@ fn dog_laplacian_boundary() {
 fn curve_laplacian() {
     potentials("curve Laplacian", 5, |r| {
         let dirs = [DVec3::ZERO, DVec3::NEG_X, DVec3::X];
-        (curve_laplacian::new(lengths(r)).unwrap(), jittered_star(r, dirs, 0.7))
+        (
+            curve_laplacian::new(lengths(r)).unwrap(),
+            jittered_star(r, dirs, 0.7),
+        )
     });
 }
 
 #[test]
 fn iso2d() {
-    constraints("iso2D", 6, |r| (Iso2d::new(r.uniform(0.5, 1.5)).unwrap(), [r.vec(2.0), r.vec(2.0)]));
+    constraints("iso2D", 6, |r| {
+        (
+            Iso2d::new(r.uniform(0.5, 1.5)).unwrap(),
+            [r.vec(2.0), r.vec(2.0)],
+        )
+    });
 }
 
 #[test]
 fn binding() {
     constraints("binding", 7, |r| {
-        (Binding::new(r.uniform(0.0, 1.0)).unwrap(), [r.vec(2.0), r.vec(2.0), r.vec(2.0)])
+        (
+            Binding::new(r.uniform(0.0, 1.0)).unwrap(),
+            [r.vec(2.0), r.vec(2.0), r.vec(2.0)],
+        )
     });
 }
 
 #[test]
 fn fix() {
-    constraints("fix", 8, |r| (Fix::new(r.vec(1.0)).unwrap(), [r.vec(2.0), r.vec(2.0)]));
+    constraints("fix", 8, |r| {
+        (Fix::new(r.vec(1.0)).unwrap(), [r.vec(2.0), r.vec(2.0)])
+    });
 }
 
 #[test]
@@ -134,24 +167,37 @@ fn glue() {
 #[test]
 fn gravity() {
     potentials("gravity", 10, |r| {
-        (Gravity::new(r.uniform(1.0, 20.0), r.uniform(0.0, 1.0)).unwrap(), [r.vec(2.0)])
+        (
+            Gravity::new(r.uniform(1.0, 20.0), r.uniform(0.0, 1.0)).unwrap(),
+            [r.vec(2.0)],
+        )
     });
 }
 
 #[test]
 fn iso3d() {
-    potentials("iso3D", 11, |r| (Iso3d::new(r.uniform(0.5, 1.5)).unwrap(), [r.vec(2.0), r.vec(2.0)]));
+    potentials("iso3D", 11, |r| {
+        (
+            Iso3d::new(r.uniform(0.5, 1.5)).unwrap(),
+            [r.vec(2.0), r.vec(2.0)],
+        )
+    });
 }
 
 #[test]
 fn positional() {
-    potentials("positional", 12, |r| (Positional::new(r.vec(3.0)).unwrap(), [r.vec(3.0)]));
+    potentials("positional", 12, |r| {
+        (Positional::new(r.vec(3.0)).unwrap(), [r.vec(3.0)])
+    });
 }
 
 #[test]
 fn spring() {
     potentials("spring (Provot)", 13, |r| {
-        (Spring::new(r.uniform(0.5, 2.0), r.uniform(0.1, 3.0)).unwrap(), [r.vec(2.0), r.vec(2.0)])
+        (
+            Spring::new(r.uniform(0.5, 2.0), r.uniform(0.1, 3.0)).unwrap(),
+            [r.vec(2.0), r.vec(2.0)],
+        )
     });
 }
 
@@ -166,12 +212,19 @@ fn spring_force_and_damping_jacobians() {
         let kd = rng.uniform(0.0, 2.0);
         // Force is minus the gradient; its Jacobian minus the Hessian.
         let f: Vec<f64> = s.force(&x).iter().flat_map(|p| p.to_array()).collect();
-        let g: Vec<f64> = s.gradient(&x).iter().flat_map(|p| (-*p).to_array()).collect();
+        let g: Vec<f64> = s
+            .gradient(&x)
+            .iter()
+            .flat_map(|p| (-*p).to_array())
+            .collect();
         worst = worst.max(rel_err(&f, &g));
         // Damping Jacobian against differences of the damping force in the velocities.
         let jd = folio_tests::flat_blocks::<f64, 2>(&s.damping_jacobian(&x, kd));
         let jd_fd = folio_tests::fd_jacobian(&v, |w| {
-            s.damping_force(&x, w, kd).iter().flat_map(|p| p.to_array()).collect()
+            s.damping_force(&x, w, kd)
+                .iter()
+                .flat_map(|p| p.to_array())
+                .collect()
         });
         worst = worst.max(rel_err(&jd, &jd_fd));
         let fj = folio_tests::flat_blocks::<f64, 2>(&s.force_jacobian(&x));
@@ -181,7 +234,10 @@ fn spring_force_and_damping_jacobians() {
         worst = worst.max(rel_err(&fj, &fj_fd));
     }
     println!("{:<28} first {worst:9.2e}", "spring force / damping");
-    assert!(worst <= FD_TOL, "spring force/damping Jacobian error {worst:e}");
+    assert!(
+        worst <= FD_TOL,
+        "spring force/damping Jacobian error {worst:e}"
+    );
 }
 
 #[test]
@@ -189,8 +245,11 @@ fn cone_curl_jacobian() {
     let mut rng = Rng::new(15);
     let mut worst: f64 = 0.0;
     for _ in 0..CONFIGS {
-        let (theta, apex, rho) =
-            (rng.uniform(0.15, 1.5), rng.uniform(-12.0, 2.0), rng.uniform(-3.0, 3.0));
+        let (theta, apex, rho) = (
+            rng.uniform(0.15, 1.5),
+            rng.uniform(-12.0, 2.0),
+            rng.uniform(-3.0, 3.0),
+        );
         let (x, y) = (rng.uniform(0.0, 12.0), rng.uniform(0.0, 16.0));
         let jac = ConeCurl::new(theta, apex, rho).jacobian(x, y);
         let analytic: Vec<f64> = (0..3).flat_map(|row| jac.map(|col| col[row])).collect();

@@ -24,7 +24,10 @@ fn dog_jacobian(x: &[DVec3], remedy: Option<&FlatStarRemedy<f64>>) -> DMatrix<f6
                     Some(r) => r.inner_jacobian(&local),
                     None => DogInnerStar::<f64>::new().jacobian(&local),
                 };
-                rows.extend(jac.iter().map(|row| ix.iter().copied().zip(row.iter().copied()).collect()));
+                rows.extend(
+                    jac.iter()
+                        .map(|row| ix.iter().copied().zip(row.iter().copied()).collect()),
+                );
             }
             GridStar::Boundary(ix) => {
                 let local = ix.map(|k| x[k]);
@@ -57,7 +60,9 @@ fn rank_and_conditioning(j: &DMatrix<f64>) -> (usize, f64) {
 fn flat_page(rng: &mut Rng) -> Vec<DVec3> {
     let (q, t) = (rng.rotation(), rng.vec(5.0));
     let h = 12.0 / 11.0;
-    (0..N * M).map(|k| q * DVec3::new((k % N) as f64 * h, (k / N) as f64 * h, 0.0) + t).collect()
+    (0..N * M)
+        .map(|k| q * DVec3::new((k % N) as f64 * h, (k / N) as f64 * h, 0.0) + t)
+        .collect()
 }
 
 #[test]
@@ -71,11 +76,19 @@ fn remedy_restores_full_row_rank_on_a_flat_page() {
         let rows = exact.nrows();
         let (rank_exact, _) = rank_and_conditioning(&exact);
         let (rank_fixed, cond) = rank_and_conditioning(&fixed);
-        println!("flat 12x9 page: {rows} DOG rows, exact rank {rank_exact}, remedied rank {rank_fixed}, sigma_min/sigma_max {cond:.2e}");
-        assert!(rank_exact < rows, "the exact flat Jacobian should be rank deficient");
+        println!(
+            "flat 12x9 page: {rows} DOG rows, exact rank {rank_exact}, remedied rank {rank_fixed}, sigma_min/sigma_max {cond:.2e}"
+        );
+        assert!(
+            rank_exact < rows,
+            "the exact flat Jacobian should be rank deficient"
+        );
         assert_eq!(rank_fixed, rows, "remedy must give full row rank");
         let change = (&fixed - &exact).abs().max();
-        assert!(change <= 10.0 * remedy.relative_offset, "remedy changed J by {change:e}");
+        assert!(
+            change <= 10.0 * remedy.relative_offset,
+            "remedy changed J by {change:e}"
+        );
     }
 }
 
@@ -98,14 +111,20 @@ fn remedy_leaves_curved_stars_exact() {
         match star {
             GridStar::Inner(ix) => {
                 let local = ix.map(|k| x[k]);
-                assert_eq!(remedy.inner_jacobian(&local), DogInnerStar::<f64>::new().jacobian(&local));
+                assert_eq!(
+                    remedy.inner_jacobian(&local),
+                    DogInnerStar::<f64>::new().jacobian(&local)
+                );
                 inner += 1;
             }
             GridStar::Boundary(ix) => {
                 let straight_through = ix[1] % N == ix[3] % N;
                 if !straight_through {
                     let local = ix.map(|k| x[k]);
-                    assert_eq!(remedy.boundary_jacobian(&local), DogBoundaryStar::<f64>::new().jacobian(&local));
+                    assert_eq!(
+                        remedy.boundary_jacobian(&local),
+                        DogBoundaryStar::<f64>::new().jacobian(&local)
+                    );
                     boundary += 1;
                 }
             }
@@ -119,14 +138,25 @@ fn remedy_is_continuous_across_the_flatness_tolerance() {
     // Bend a single star gradually through the tolerance: the Jacobian moves smoothly.
     let remedy = FlatStarRemedy::<f64>::default();
     let jac = |bend: f64| {
-        let x = [DVec3::ZERO, DVec3::new(1.0, 0.0, bend), DVec3::Y, DVec3::new(-1.0, 0.0, bend), DVec3::NEG_Y];
+        let x = [
+            DVec3::ZERO,
+            DVec3::new(1.0, 0.0, bend),
+            DVec3::Y,
+            DVec3::new(-1.0, 0.0, bend),
+            DVec3::NEG_Y,
+        ];
         remedy.inner_jacobian(&x)
     };
     let mut prev = jac(0.0);
     let steps = 2000;
     for k in 1..=steps {
         let next = jac(0.02 * k as f64 / steps as f64);
-        let jump = prev.iter().zip(&next).flat_map(|(a, b)| a.iter().zip(b)).map(|(a, b)| (*a - *b).length()).fold(0.0, f64::max);
+        let jump = prev
+            .iter()
+            .zip(&next)
+            .flat_map(|(a, b)| a.iter().zip(b))
+            .map(|(a, b)| (*a - *b).length())
+            .fold(0.0, f64::max);
         assert!(jump <= 1e-4, "Jacobian jumped by {jump:e} at step {k}");
         prev = next;
     }

@@ -20,7 +20,10 @@ fn potential<T: Real, P: Potential<T, N>, const N: usize>(p: &P, x: &[T::Vec3; N
     black_box((p.value(x), p.gradient(x), p.hessian(x)));
 }
 
-fn constraint<T: Real, C: Constraint<T, R, N>, const R: usize, const N: usize>(c: &C, x: &[T::Vec3; N]) {
+fn constraint<T: Real, C: Constraint<T, R, N>, const R: usize, const N: usize>(
+    c: &C,
+    x: &[T::Vec3; N],
+) {
     black_box((c.value(x), c.jacobian(x), c.hessian(x, &[T::ONE; R])));
 }
 
@@ -32,7 +35,10 @@ pub fn exercise<T: Real>() {
     constraint(&DogInnerStar::<T>::new(), &p);
     constraint(&DogBoundaryStar::<T>::new(), &[p0, p1, p2, p3]);
     let remedy = FlatStarRemedy::<T>::default();
-    black_box((remedy.inner_jacobian(&p), remedy.boundary_jacobian(&[p0, p1, p2, p3])));
+    black_box((
+        remedy.inner_jacobian(&p),
+        remedy.boundary_jacobian(&[p0, p1, p2, p3]),
+    ));
     if let Ok(t) = dog_laplacian::inner([s; 4]) {
         potential(&t, &p);
     }
@@ -64,7 +70,10 @@ pub fn exercise<T: Real>() {
     }
     if let Ok(t) = Spring::new(s, s) {
         potential(&t, &[p0, p1]);
-        black_box((t.force_jacobian(&[p0, p1]), t.damping_force(&[p0, p1], &[p2, p3], s)));
+        black_box((
+            t.force_jacobian(&[p0, p1]),
+            t.damping_force(&[p0, p1], &[p2, p3], s),
+        ));
     }
     let curl = ConeCurl::new(s, s, s);
     black_box((curl.map_point(s, s), curl.jacobian(s, s)));
