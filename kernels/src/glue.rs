@@ -66,10 +66,14 @@ fn side<T: Real>(
         [rt * c.grad_u, p * c.grad_v],
         T::ONE,
     );
-    let h = [
-        [rt * c.h_uu * r, rt * c.h_uv * p],
-        [p * c.h_uv.transposed() * r, p * c.h_vv * p],
-    ];
+    let h = if hessian {
+        [
+            [rt * c.h_uu * r, rt * c.h_uv * p],
+            [p * c.h_uv.transposed() * r, p * c.h_vv * p],
+        ]
+    } else {
+        [[T::Mat3::ZERO; 2]; 2]
+    };
     (c.value, grad, h)
 }
 
