@@ -61,3 +61,15 @@ pub(crate) fn inverse_length<T: Real>(l: T, index: usize) -> Result<T, KernelErr
         Err(KernelError::NonPositiveRestLength { index })
     }
 }
+
+/// `Ok(l^2)` for a finite rest length `l >= 0` (the squared-length terms, eq. 6 and 13).
+pub(crate) fn squared_rest_length<T: Real>(l: T) -> Result<T, KernelError> {
+    let l = finite(l, "rest_length")?;
+    if l < T::ZERO {
+        Err(KernelError::OutOfRange {
+            name: "rest_length",
+        })
+    } else {
+        Ok(l * l)
+    }
+}

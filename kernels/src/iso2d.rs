@@ -4,7 +4,7 @@
 //! $\nabla_{x_j}\varphi = -2d$, $\lambda\nabla^2\varphi = 2\lambda\,[[I, -I], [-I, I]]$.
 //! Units: length$^2$.
 
-use crate::error::{KernelError, finite};
+use crate::error::{KernelError, squared_rest_length};
 use crate::real::{Mat3Ops, Real};
 use crate::term::{Blocks, Constraint, NodeVecs, pair_blocks};
 
@@ -21,14 +21,8 @@ impl<T: Real> Iso2d<T> {
     /// # Errors
     /// [`KernelError::NonFiniteParameter`] or [`KernelError::OutOfRange`] for a negative length.
     pub fn new(rest_length: T) -> Result<Self, KernelError> {
-        let l = finite(rest_length, "rest_length")?;
-        if l < T::ZERO {
-            return Err(KernelError::OutOfRange {
-                name: "rest_length",
-            });
-        }
         Ok(Self {
-            rest_length_sq: l * l,
+            rest_length_sq: squared_rest_length(rest_length)?,
         })
     }
 }

@@ -9,7 +9,7 @@
 //! [`Iso3d::hessian_projected`] drops the $4sI$ part there, a positive semi-definite
 //! alternative for solvers that want one.
 
-use crate::error::{KernelError, finite};
+use crate::error::{KernelError, squared_rest_length};
 use crate::real::{Mat3Ops, Real, Vec3Ops};
 use crate::term::{Blocks, NodeVecs, Potential, pair_blocks};
 
@@ -26,14 +26,8 @@ impl<T: Real> Iso3d<T> {
     /// # Errors
     /// [`KernelError::NonFiniteParameter`] or [`KernelError::OutOfRange`] for a negative length.
     pub fn new(rest_length: T) -> Result<Self, KernelError> {
-        let l = finite(rest_length, "rest_length")?;
-        if l < T::ZERO {
-            return Err(KernelError::OutOfRange {
-                name: "rest_length",
-            });
-        }
         Ok(Self {
-            rest_length_sq: l * l,
+            rest_length_sq: squared_rest_length(rest_length)?,
         })
     }
 
