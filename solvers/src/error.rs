@@ -1,0 +1,87 @@
+//! Typed errors of the solver's setup: settings validation and the analysis of a model.
+//! A time step itself never returns an error; it reports a [`crate::StepStatus`].
+
+use core::fmt;
+
+/// Why settings were rejected or a model could not be analysed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum SolverError {
+    /// A setting is NaN, infinite or outside its documented range.
+    InvalidSetting {
+        /// The field of [`crate::Settings`].
+        field: &'static str,
+        /// What the field must be.
+        requirement: &'static str,
+    },
+    /// A term names a node the model does not have.
+    NodeOutOfRange {
+        /// Index of the term family in the model's visiting order.
+        family: usize,
+        /// Index of the term within its family.
+        term: usize,
+        /// The offending node index.
+        node: u32,
+        /// How many nodes the model has.
+        node_count: usize,
+    },
+    /// A node with at least one free coordinate has a mass that is not positive and finite.
+    NonPositiveMass {
+        /// The node.
+        node: usize,
+    },
+    /// The state's length differs from the model's node count.
+    StateLength {
+        /// The model's node count.
+        expected: usize,
+        /// Positions in the state.
+        positions: usize,
+        /// Velocities in the state.
+        velocities: usize,
+    },
+    /// The model visited its term families in another order or with other sizes than at
+    /// analysis without bumping its topology version.
+    ModelChanged,
+    /// The model has more unknowns or matrix entries than 32-bit indices address.
+    TooLarge,
+}
+
+impl fmt::Display for SolverError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::InvalidSetting { field, requirement } => {
+                write!(f, "setting `{field}` must be {requirement}")
+            }
+            Self::NodeOutOfRange {
+                family,
+                term,
+                node,
+                node_count,
+            } => write!(
+                f,
+                "term {term} of family {family} names node {node}, but the model has {node_count} nodes"
+            ),
+            Self::NonPositiveMass { node } => {
+                write!(
+                    f,
+                    "node {node} has free coordinates but no positive finite mass"
+                )
+            }
+            Self::StateLength {
+                expected,
+                positions,
+                velocities,
+            } => write!(
+                f,
+                "the state has {positions} positions and {velocities} velocities, the model {expected} nodes"
+            ),
+            Self::ModelChanged => write!(
+                f,
+                "the model's term families changed without a new topology version"
+            ),
+            Self::TooLarge => write!(f, "the model exceeds 32-bit sparse indices"),
+        }
+    }
+}
+
+impl core::error::Error for SolverError {}

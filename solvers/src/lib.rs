@@ -1,0 +1,41 @@
+//! # folio-solvers
+//!
+//! Folio's sparse KKT machinery and the implicit-Euler SQP step of seed `000_…` (Sec. 3.1,
+//! eq. 2-4), `no_std` + `alloc`, in `f32` and `f64`.
+//!
+//! - [`model`]: what a model provides ([`Model`]): nodes, masses, eliminated coordinates,
+//!   and term families ([`PotentialSet`], [`ConstraintSet`]) over `folio-kernels` terms.
+//! - [`pattern`]: the upper-triangle KKT pattern and every term's scatter map, built once.
+//! - [`ordering`], [`symbolic`]: the fill-reducing order and the indices-only analysis,
+//!   rebuilt only when the model's topology version changes.
+//! - [`ldlt`], [`kkt`]: the numeric $LDL^\top$ with sign-aware regularization on the reused
+//!   analysis, and the refined solve.
+//! - [`step`]: [`Solver::step`], one time step with a [`StepReport`].
+//! - [`matrix_market`]: export of the assembled KKT matrix.
+//!
+//! Setup allocates; a step on an analysed topology does not (a test with a counting
+//! allocator holds this).
+#![cfg_attr(not(feature = "std"), no_std)]
+
+extern crate alloc;
+
+mod assembly;
+pub mod error;
+pub mod kkt;
+pub mod ldlt;
+pub mod matrix_market;
+pub mod model;
+pub mod ordering;
+pub mod pattern;
+pub mod report;
+pub mod settings;
+pub mod step;
+pub mod symbolic;
+
+pub use error::SolverError;
+pub use kkt::Kkt;
+pub use model::{ConstraintSet, Model, PotentialSet, Term, TermVisitor};
+pub use ordering::Ordering;
+pub use report::{StepReport, StepStatus};
+pub use settings::Settings;
+pub use step::{Solver, State};

@@ -1,0 +1,314 @@
+//! The KKT sparsity pattern and the scatter maps from each term's local block into it.
+//!
+//! Unknowns are the free coordinates ("dofs") numbered node-major, followed by one unknown per
+//! constraint row (its multiplier). The KKT matrix
+//! $$K = \begin{bmatrix} M/h^2 + \nabla^2 V\ (+\textstyle\sum_l \lambda_l \nabla^2 C_l) & \nabla C^\top \\ \nabla C & 0 \end{bmatrix}$$
+//! (DESIGN.md "Time step", seed `000_…` eq. 3-4) is stored as its upper triangle in compressed
+//! sparse columns with sorted rows and every diagonal entry present. Each term's local
+//! Hessian entry and Jacobian entry has a precomputed slot (index into the value array) or
+//! [`NONE`] when it falls on an eliminated coordinate or in the lower triangle. Assembly is
+//! then a scatter through these maps: no search, no allocation.
+
+use alloc::vec::Vec;
+use folio_kernels::{Constraint, Potential, Real};
+
+use crate::error::SolverError;
+use crate::model::{ConstraintSet, Model, PotentialSet, TermVisitor};
+
+/// Marks an eliminated coordinate or a dropped (lower-triangle) entry in the maps.
+pub const NONE: u32 = u32::MAX;
+
+/// Where one term family's maps start.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Family {
+    /// Number of terms.
+    pub terms: usize,
+    /// Nodes per term.
+    pub nodes: usize,
+    /// Constraint rows per term (0 for potentials).
+    pub rows: usize,
+    /// Whether the family's Hessian blocks are assembled (always for potentials; for
+    /// nonlinear constraints when the constraint Hessian is on).
+    pub has_hessian: bool,
+    /// Offset into [`KktPattern::local_dofs`] (`3 N` entries per term).
+    pub dof_offset: usize,
+    /// Offset into [`KktPattern::hessian_slots`] (`9 N^2` per term, if `has_hessian`).
+    pub hessian_offset: usize,
+    /// Offset into [`KktPattern::jacobian_slots`] (`3 N R` per term).
+    pub jacobian_offset: usize,
+    /// First global constraint row.
+    pub first_row: usize,
+}
+
+/// The upper-triangle KKT pattern of a model and every term's scatter map.
+#[derive(Clone, Debug, Default)]
+pub struct KktPattern {
+    /// Number of free coordinates (primal unknowns).
+    pub dofs: usize,
+    /// Number of constraint rows (dual unknowns).
+    pub rows: usize,
+    /// `dof_of[3 * node + axis]`: the free coordinate's index, or [`NONE`] when eliminated.
+    pub dof_of: Vec<u32>,
+    /// `coordinate_of[dof] = 3 * node + axis`.
+    pub coordinate_of: Vec<u32>,
+    /// Column pointers, `dofs + rows + 1` entries.
+    pub col_ptr: Vec<u32>,
+    /// Row index of each stored entry; rows are sorted within a column and the last entry of
+    /// every column is its diagonal.
+    pub row_idx: Vec<u32>,
+    pub(crate) families: Vec<Family>,
+    pub(crate) local_dofs: Vec<u32>,
+    pub(crate) hessian_slots: Vec<u32>,
+    pub(crate) jacobian_slots: Vec<u32>,
+    /// Whether the constraint Hessian blocks are part of the pattern.
+    pub with_constraint_hessian: bool,
+}
+
+impl KktPattern {
+    /// Order of the KKT matrix, `dofs + rows`.
+    #[must_use]
+    pub fn order(&self) -> usize {
+        self.dofs + self.rows
+    }
+
+    /// Number of stored (upper-triangle) entries.
+    #[must_use]
+    pub fn nnz(&self) -> usize {
+        self.row_idx.len()
+    }
+
+    /// Slot of diagonal entry `k` (the last entry of column `k`).
+    #[inline]
+    #[must_use]
+    pub fn diagonal_slot(&self, k: usize) -> usize {
+        self.col_ptr[k + 1] as usize - 1
+    }
+
+    /// Builds the pattern of `model`; `with_constraint_hessian` adds the constraint stencils'
+    /// node couplings to the primal block.
+    ///
+    /// # Errors
+    /// [`SolverError::NodeOutOfRange`] for a term naming a missing node,
+    /// [`SolverError::TooLarge`] beyond 32-bit indices.
+    pub fn build<T: Real, M: Model<T>>(
+        model: &M,
+        with_constraint_hessian: bool,
+    ) -> Result<Self, SolverError> {
+        let node_count = model.node_count();
+        if node_count.saturating_mul(3) >= NONE as usize {
+            return Err(SolverError::TooLarge);
+        }
+        let mut dof_of = Vec::with_capacity(3 * node_count);
+        let mut coordinate_of = Vec::new();
+        for c in 0..3 * node_count {
+            if model.is_fixed(c / 3, c % 3) {
+                dof_of.push(NONE);
+            } else {
+                dof_of.push(coordinate_of.len() as u32);
+                coordinate_of.push(c as u32);
+            }
+        }
+        let mut declare = Declare {
+            dof_of: &dof_of,
+            dofs: coordinate_of.len(),
+            node_count,
+            with_constraint_hessian,
+            families: Vec::new(),
+            local_dofs: Vec::new(),
+            entries: Vec::new(),
+            rows: 0,
+            hessian_len: 0,
+            jacobian_len: 0,
+            error: None,
+        };
+        model.visit_terms(&mut declare);
+        if let Some(e) = declare.error {
+            return Err(e);
+        }
+        let (families, local_dofs, rows) = (declare.families, declare.local_dofs, declare.rows);
+        let (hessian_len, jacobian_len) = (declare.hessian_len, declare.jacobian_len);
+        let mut entries = declare.entries;
+        let dofs = coordinate_of.len();
+        let order = dofs + rows;
+        if order >= NONE as usize {
+            return Err(SolverError::TooLarge);
+        }
+        entries.extend((0..order as u64).map(|k| (k << 32) | k));
+        entries.sort_unstable();
+        entries.dedup();
+        if entries.len() >= NONE as usize {
+            return Err(SolverError::TooLarge);
+        }
+        let mut col_ptr = alloc::vec![0u32; order + 1];
+        let mut row_idx = Vec::with_capacity(entries.len());
+        for &key in &entries {
+            col_ptr[(key >> 32) as usize + 1] += 1;
+            row_idx.push(key as u32);
+        }
+        for k in 0..order {
+            col_ptr[k + 1] += col_ptr[k];
+        }
+        let mut pattern = Self {
+            dofs,
+            rows,
+            dof_of,
+            coordinate_of,
+            col_ptr,
+            row_idx,
+            families,
+            local_dofs,
+            hessian_slots: Vec::with_capacity(hessian_len),
+            jacobian_slots: Vec::with_capacity(jacobian_len),
+            with_constraint_hessian,
+        };
+        pattern.fill_slots();
+        Ok(pattern)
+    }
+
+    /// Slot of upper-triangle entry `(row, col)`, `row <= col`; setup only (binary search).
+    fn slot(&self, row: u32, col: u32) -> u32 {
+        let start = self.col_ptr[col as usize] as usize;
+        let end = self.col_ptr[col as usize + 1] as usize;
+        match self.row_idx[start..end].binary_search(&row) {
+            Ok(p) => (start + p) as u32,
+            Err(_) => NONE,
+        }
+    }
+
+    /// Fills the Hessian and Jacobian slot maps from the local dofs.
+    fn fill_slots(&mut self) {
+        let families = core::mem::take(&mut self.families);
+        let mut families_out = Vec::with_capacity(families.len());
+        for mut f in families {
+            let with_hessian = f.has_hessian;
+            f.hessian_offset = self.hessian_slots.len();
+            f.jacobian_offset = self.jacobian_slots.len();
+            let n = f.nodes;
+            for t in 0..f.terms {
+                let base = f.dof_offset + t * 3 * n;
+                if with_hessian {
+                    for p in 0..3 * n {
+                        for q in 0..3 * n {
+                            let a = self.local_dofs[base + p];
+                            let b = self.local_dofs[base + q];
+                            let slot = if a == NONE || b == NONE || a > b {
+                                NONE
+                            } else {
+                                self.slot(a, b)
+                            };
+                            self.hessian_slots.push(slot);
+                        }
+                    }
+                }
+                for r in 0..f.rows {
+                    let col = (self.dofs + f.first_row + t * f.rows + r) as u32;
+                    for p in 0..3 * n {
+                        let a = self.local_dofs[base + p];
+                        let slot = if a == NONE { NONE } else { self.slot(a, col) };
+                        self.jacobian_slots.push(slot);
+                    }
+                }
+            }
+            families_out.push(f);
+        }
+        self.families = families_out;
+    }
+}
+
+/// The declaring visitor: numbers rows, records local dofs and the pattern's entries.
+struct Declare<'a> {
+    dof_of: &'a [u32],
+    dofs: usize,
+    node_count: usize,
+    with_constraint_hessian: bool,
+    families: Vec<Family>,
+    local_dofs: Vec<u32>,
+    /// `(col << 32) | row` keys of upper-triangle entries.
+    entries: Vec<u64>,
+    rows: usize,
+    hessian_len: usize,
+    jacobian_len: usize,
+    error: Option<SolverError>,
+}
+
+impl Declare<'_> {
+    /// Records one family: its local dofs, Hessian entries (`with_hessian`) and `rows`
+    /// Jacobian rows per term.
+    fn family<const N: usize>(
+        &mut self,
+        nodes: impl Iterator<Item = [u32; N]>,
+        rows: usize,
+        with_hessian: bool,
+    ) {
+        let index = self.families.len();
+        let dof_offset = self.local_dofs.len();
+        let first_row = self.rows;
+        let mut terms = 0;
+        for (t, term_nodes) in nodes.enumerate() {
+            terms += 1;
+            let base = self.local_dofs.len();
+            for &node in &term_nodes {
+                if node as usize >= self.node_count {
+                    self.error.get_or_insert(SolverError::NodeOutOfRange {
+                        family: index,
+                        term: t,
+                        node,
+                        node_count: self.node_count,
+                    });
+                    self.local_dofs.extend_from_slice(&[NONE; 3]);
+                    continue;
+                }
+                let c = 3 * node as usize;
+                self.local_dofs.extend_from_slice(&self.dof_of[c..c + 3]);
+            }
+            let local = base..self.local_dofs.len();
+            if with_hessian {
+                for p in local.clone() {
+                    for q in local.clone() {
+                        let (a, b) = (self.local_dofs[p], self.local_dofs[q]);
+                        if a != NONE && b != NONE && a <= b {
+                            self.entries.push((u64::from(b) << 32) | u64::from(a));
+                        }
+                    }
+                }
+            }
+            for r in 0..rows {
+                // The column of this row's multiplier.
+                let col = (self.dofs + self.rows + r) as u64;
+                for p in local.clone() {
+                    let a = self.local_dofs[p];
+                    if a != NONE {
+                        self.entries.push((col << 32) | u64::from(a));
+                    }
+                }
+            }
+            self.rows += rows;
+        }
+        self.hessian_len += if with_hessian { terms * 9 * N * N } else { 0 };
+        self.jacobian_len += terms * 3 * N * rows;
+        self.families.push(Family {
+            terms,
+            nodes: N,
+            rows,
+            has_hessian: with_hessian,
+            dof_offset,
+            hessian_offset: 0,
+            jacobian_offset: 0,
+            first_row,
+        });
+    }
+}
+
+impl<T: Real> TermVisitor<T> for Declare<'_> {
+    fn potentials<P: Potential<T, N>, const N: usize>(&mut self, set: &PotentialSet<T, P, N>) {
+        self.family::<N>(set.terms().iter().map(|t| t.nodes), 0, true);
+    }
+
+    fn constraints<C: Constraint<T, R, N>, const R: usize, const N: usize>(
+        &mut self,
+        set: &ConstraintSet<C, N>,
+    ) {
+        let with_hessian = self.with_constraint_hessian && !C::LINEAR;
+        self.family::<N>(set.terms().iter().map(|t| t.nodes), R, with_hessian);
+    }
+}

@@ -1,0 +1,59 @@
+//! What a time step reports.
+
+/// How a step ended. Only `Converged` and `IterationLimit` change the state.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum StepStatus {
+    /// The eq. 3 residual is within [`crate::Settings::tolerance`].
+    Converged,
+    /// The configured Newton iterations ran (the paper's default: one); the residual is above
+    /// the tolerance or was not evaluated. The state was advanced.
+    IterationLimit,
+    /// No step length up to [`crate::Settings::max_halvings`] halvings decreased the merit
+    /// function; the state is unchanged.
+    LineSearchFailed,
+    /// A factorization or solve produced a non-finite value; the state is unchanged.
+    NumericalFailure,
+    /// The state or the model's terms are non-finite at the start of the step; the state is
+    /// unchanged.
+    NonFiniteInput,
+}
+
+impl StepStatus {
+    /// `true` when the step advanced the state.
+    #[must_use]
+    pub fn advanced(self) -> bool {
+        matches!(self, Self::Converged | Self::IterationLimit)
+    }
+}
+
+/// The record of one step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepReport<T> {
+    /// How the step ended.
+    pub status: StepStatus,
+    /// KKT systems solved.
+    pub iterations: u32,
+    /// The eq. 3 residual at the final iterate (see [`crate::Settings::tolerance`]), when it
+    /// was evaluated.
+    pub residual: Option<T>,
+    /// $\lVert C(x)\rVert_\infty$ at the final iterate, when it was evaluated.
+    pub constraint_residual: Option<T>,
+    /// Worst relative residual $\lVert Kz - b\rVert_\infty / \lVert b\rVert_\infty$ of the
+    /// step's KKT solves after refinement (0 when none ran).
+    pub linear_residual: T,
+    /// Merit $\psi = E + \mu\lVert C\rVert_2$ before the last line search, if one ran.
+    pub merit_before: Option<T>,
+    /// Merit at the accepted point of the last line search, if one ran and succeeded.
+    pub merit_after: Option<T>,
+    /// Step halvings over all line searches of the step.
+    pub halvings: u32,
+    /// Pivots replaced by the sign-aware regularization, summed over the step's
+    /// factorizations. Nonzero with the default ordering means a (numerically) singular KKT:
+    /// redundant or conflicting constraints.
+    pub regularized_pivots: usize,
+    /// Iterative-refinement steps over all solves.
+    pub refinement_steps: u32,
+    /// The symbolic analysis was (re)built in this step (topology change or first step).
+    pub analysed: bool,
+}

@@ -1,0 +1,98 @@
+//! Settings of the implicit-Euler SQP step (DESIGN.md "Time step" and "Line search").
+
+use folio_kernels::Real;
+
+use crate::error::SolverError;
+use crate::ordering::Ordering;
+
+/// Step settings: a plain struct; [`Settings::validate`] checks it (the solver does too).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settings<T> {
+    /// Time step $h$ in seconds; finite, $> 0$. Default $1/60$.
+    pub time_step: T,
+    /// Newton iterations per step, $\ge 1$. Default 1 (seed `000_…` eq. 4).
+    pub newton_iterations: u32,
+    /// Include $\sum_l \lambda_l \nabla^2 C_l$ in the KKT matrix. Default off (the paper
+    /// omits it). Changing it changes the pattern and re-runs the symbolic analysis.
+    pub constraint_hessian: bool,
+    /// The step has converged when the residual of seed `000_…` eq. 3,
+    /// $\max(\lVert x - \bar x + h^2 M^{-1}(\nabla V + \nabla C^\top\lambda)\rVert_\infty,
+    /// \lVert C\rVert_\infty)$, is at most this (page units, and the constraints' own units).
+    /// Finite, $\ge 0$. Default $\sqrt{\varepsilon}$ of the precision.
+    pub tolerance: T,
+    /// Backtrack on the merit $\psi = E + \mu \lVert C\rVert_2$ (RHS19). Default on.
+    pub line_search: bool,
+    /// Most step halvings in the line search, at most 60. Default 20.
+    pub max_halvings: u32,
+    /// Elimination order of the symbolic analysis.
+    pub ordering: Ordering,
+    /// A pivot with $s_k d_k \le$ `pivot_epsilon` $\cdot$ scale is regularized (scale: the
+    /// largest primal diagonal). Finite, $\ge 0$. Default $1000\,\varepsilon$.
+    pub pivot_epsilon: T,
+    /// A regularized pivot becomes $s_k \cdot$ `regularization` $\cdot$ scale. Finite,
+    /// $> 0$. Default $\sqrt{\varepsilon}$.
+    pub regularization: T,
+    /// Most iterative-refinement steps per solve, at most 100. Default 3.
+    pub refinement_steps: u32,
+    /// Refinement stops at this relative residual $\lVert Kz - b\rVert_\infty/\lVert b\rVert_\infty$.
+    /// Finite, $\ge 0$. Default $32\,\varepsilon$.
+    pub refinement_tolerance: T,
+    /// Evaluate the eq. 3 residual after the last iteration (one gradient and Jacobian
+    /// evaluation, no factorization) so the status can say `Converged`. Default on.
+    pub check_final_residual: bool,
+}
+
+impl<T: Real> Default for Settings<T> {
+    fn default() -> Self {
+        let sqrt_eps = folio_kernels::math::sqrt(T::EPSILON);
+        Self {
+            time_step: T::from_f64(1.0 / 60.0),
+            newton_iterations: 1,
+            constraint_hessian: false,
+            tolerance: sqrt_eps,
+            line_search: true,
+            max_halvings: 20,
+            ordering: Ordering::default(),
+            pivot_epsilon: T::from_f64(1000.0) * T::EPSILON,
+            regularization: sqrt_eps,
+            refinement_steps: 3,
+            refinement_tolerance: T::from_f64(32.0) * T::EPSILON,
+            check_final_residual: true,
+        }
+    }
+}
+
+impl<T: Real> Settings<T> {
+    /// Checks every field against its documented range.
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidSetting`] naming the first bad field.
+    pub fn validate(&self) -> Result<(), SolverError> {
+        let bad = |field, requirement| Err(SolverError::InvalidSetting { field, requirement });
+        if !(self.time_step.is_finite() && self.time_step > T::ZERO) {
+            return bad("time_step", "finite and > 0");
+        }
+        if self.newton_iterations == 0 {
+            return bad("newton_iterations", ">= 1");
+        }
+        if !(self.tolerance.is_finite() && self.tolerance >= T::ZERO) {
+            return bad("tolerance", "finite and >= 0");
+        }
+        if self.max_halvings > 60 {
+            return bad("max_halvings", "at most 60");
+        }
+        if !(self.pivot_epsilon.is_finite() && self.pivot_epsilon >= T::ZERO) {
+            return bad("pivot_epsilon", "finite and >= 0");
+        }
+        if !(self.regularization.is_finite() && self.regularization > T::ZERO) {
+            return bad("regularization", "finite and > 0");
+        }
+        if self.refinement_steps > 100 {
+            return bad("refinement_steps", "at most 100");
+        }
+        if !(self.refinement_tolerance.is_finite() && self.refinement_tolerance >= T::ZERO) {
+            return bad("refinement_tolerance", "finite and >= 0");
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,473 @@
+//! The implicit-Euler SQP step (seed `000_…` eq. 2-4, DESIGN.md "Time step" and "Line
+//! search").
+//!
+//! With $\bar x = x^{(k-1)} + h v^{(k-1)}$ the step solves
+//! $\min_x E(x) = \tfrac{1}{2h^2}(x-\bar x)^\top M (x-\bar x) + V(x)$ s.t. $C(x) = 0$ by Newton
+//! on its KKT conditions, starting from $x^{(k-1)}$ and $\lambda = 0$:
+//! $$\begin{bmatrix} M/h^2 + \nabla^2 V\ (+\textstyle\sum_l\lambda_l\nabla^2 C_l) & \nabla C^\top \\ \nabla C & 0\end{bmatrix}
+//! \begin{bmatrix}\Delta x \\ \lambda^+\end{bmatrix} = -\begin{bmatrix} M/h^2(x-\bar x) + \nabla V \\ C(x)\end{bmatrix},$$
+//! optionally backtracking on $\psi = E + \mu\lVert C\rVert_2$, $\mu = \max(1.1\max|\lambda^+|, 0.05)$,
+//! then $v = (x - x^{(k-1)})/h$.
+
+use alloc::vec;
+use alloc::vec::Vec;
+use folio_kernels::{Real, Vec3Ops, math};
+
+use crate::assembly::{Assemble, Derivatives};
+use crate::error::SolverError;
+use crate::kkt::{Kkt, max_abs};
+use crate::ldlt::FactorOutcome;
+use crate::model::Model;
+use crate::ordering::Ordering;
+use crate::pattern::KktPattern;
+use crate::report::{StepReport, StepStatus};
+use crate::settings::Settings;
+
+/// Node positions and velocities (page units, page units per second).
+#[derive(Clone, Debug, PartialEq)]
+pub struct State<T: Real> {
+    /// Positions, one per node.
+    pub x: Vec<T::Vec3>,
+    /// Velocities, one per node.
+    pub v: Vec<T::Vec3>,
+}
+
+impl<T: Real> State<T> {
+    /// Positions `x` at rest.
+    #[must_use]
+    pub fn at_rest(x: Vec<T::Vec3>) -> Self {
+        let v = vec![T::Vec3::ZERO; x.len()];
+        Self { x, v }
+    }
+}
+
+/// Everything sized by one topology: the KKT system and the step's vectors.
+#[derive(Clone, Debug)]
+struct Workspace<T: Real> {
+    version: u64,
+    ordering: Ordering,
+    kkt: Kkt<T>,
+    /// Right-hand side, then product scratch, then solution: `dofs + rows` each.
+    rhs: Vec<T>,
+    product: Vec<T>,
+    solution: Vec<T>,
+    /// $\nabla V$ per dof.
+    gradient: Vec<T>,
+    /// $C(x)$ per row.
+    constraint: Vec<T>,
+    /// Current multipliers.
+    lambda: Vec<T>,
+    /// Mass per dof.
+    mass: Vec<T>,
+    /// $x^{(k-1)}$ and $\bar x$ per dof.
+    x_prev: Vec<T>,
+    x_bar: Vec<T>,
+    /// Current iterate and line-search trial, per node.
+    x: Vec<T::Vec3>,
+    trial: Vec<T::Vec3>,
+}
+
+/// The time stepper: settings, and the symbolic analysis and buffers of the last topology it
+/// saw. Setup (the first step, or a step after a topology change) allocates; every other
+/// step does not.
+#[derive(Clone, Debug)]
+pub struct Solver<T: Real> {
+    settings: Settings<T>,
+    work: Option<Workspace<T>>,
+}
+
+/// Values of one model evaluation.
+#[derive(Clone, Copy, Debug)]
+struct Evaluation<T> {
+    /// $E = $ inertia $+ V$.
+    energy: T,
+    finite: bool,
+}
+
+impl<T: Real> Solver<T> {
+    /// A solver with validated `settings`.
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidSetting`] for a bad field.
+    pub fn new(settings: Settings<T>) -> Result<Self, SolverError> {
+        settings.validate()?;
+        Ok(Self {
+            settings,
+            work: None,
+        })
+    }
+
+    /// The settings.
+    #[must_use]
+    pub fn settings(&self) -> &Settings<T> {
+        &self.settings
+    }
+
+    /// Replaces the settings (a change of ordering or of the constraint-Hessian switch
+    /// re-runs the analysis at the next step).
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidSetting`]; the old settings are kept.
+    pub fn set_settings(&mut self, settings: Settings<T>) -> Result<(), SolverError> {
+        settings.validate()?;
+        self.settings = settings;
+        Ok(())
+    }
+
+    /// The current KKT system (pattern, values, symbolic analysis, factor), once analysed.
+    #[must_use]
+    pub fn kkt(&self) -> Option<&Kkt<T>> {
+        self.work.as_ref().map(|w| &w.kkt)
+    }
+
+    /// The right-hand side of the last assembled KKT system (`dofs + rows` entries).
+    #[must_use]
+    pub fn rhs(&self) -> Option<&[T]> {
+        self.work.as_ref().map(|w| w.rhs.as_slice())
+    }
+
+    /// Runs the symbolic analysis for `model` unless the current one is still valid; returns
+    /// whether it ran.
+    ///
+    /// # Errors
+    /// [`SolverError::NodeOutOfRange`] or [`SolverError::TooLarge`] from the pattern.
+    pub fn analyse<M: Model<T>>(&mut self, model: &M) -> Result<bool, SolverError> {
+        let s = &self.settings;
+        if let Some(w) = &self.work {
+            if w.version == model.topology_version()
+                && w.ordering == s.ordering
+                && w.kkt.pattern.with_constraint_hessian == s.constraint_hessian
+            {
+                return Ok(false);
+            }
+        }
+        self.work = None;
+        let pattern = KktPattern::build(model, s.constraint_hessian)?;
+        let (dofs, rows, nodes) = (pattern.dofs, pattern.rows, model.node_count());
+        let n = dofs + rows;
+        self.work = Some(Workspace {
+            version: model.topology_version(),
+            ordering: s.ordering,
+            kkt: Kkt::new(pattern, s.ordering),
+            rhs: vec![T::ZERO; n],
+            product: vec![T::ZERO; n],
+            solution: vec![T::ZERO; n],
+            gradient: vec![T::ZERO; dofs],
+            constraint: vec![T::ZERO; rows],
+            lambda: vec![T::ZERO; rows],
+            mass: vec![T::ZERO; dofs],
+            x_prev: vec![T::ZERO; dofs],
+            x_bar: vec![T::ZERO; dofs],
+            x: vec![T::Vec3::ZERO; nodes],
+            trial: vec![T::Vec3::ZERO; nodes],
+        });
+        Ok(true)
+    }
+
+    /// Assembles the first Newton system of a step from `state` (as [`Solver::step`] would)
+    /// without solving it: afterwards [`Solver::kkt`] and [`Solver::rhs`] hold $K$ and $b$.
+    /// Returns `false` when the state or the model's terms are non-finite.
+    ///
+    /// # Errors
+    /// As [`Solver::step`].
+    pub fn linearize<M: Model<T>>(
+        &mut self,
+        model: &M,
+        state: &State<T>,
+    ) -> Result<bool, SolverError> {
+        self.analyse(model)?;
+        let h = self.settings.time_step;
+        let Some(w) = self.work.as_mut() else {
+            return Ok(false);
+        };
+        if !w.begin(model, state, h)? {
+            return Ok(false);
+        }
+        let e = w.evaluate(model, h, false, Derivatives::Second)?;
+        w.fill_rhs(h);
+        Ok(e.finite)
+    }
+
+    /// Advances `state` by one implicit-Euler step of `model` (module docs). On any status
+    /// but `Converged` / `IterationLimit` the state is left exactly as it was.
+    ///
+    /// # Errors
+    /// Setup errors only: [`SolverError::NodeOutOfRange`], [`SolverError::TooLarge`],
+    /// [`SolverError::StateLength`], [`SolverError::NonPositiveMass`],
+    /// [`SolverError::ModelChanged`].
+    pub fn step<M: Model<T>>(
+        &mut self,
+        model: &M,
+        state: &mut State<T>,
+    ) -> Result<StepReport<T>, SolverError> {
+        let analysed = self.analyse(model)?;
+        let s = self.settings;
+        let h = s.time_step;
+        let mut report = StepReport {
+            status: StepStatus::NonFiniteInput,
+            iterations: 0,
+            residual: None,
+            constraint_residual: None,
+            linear_residual: T::ZERO,
+            merit_before: None,
+            merit_after: None,
+            halvings: 0,
+            regularized_pivots: 0,
+            refinement_steps: 0,
+            analysed,
+        };
+        let Some(w) = self.work.as_mut() else {
+            return Ok(report);
+        };
+        if !w.begin(model, state, h)? {
+            return Ok(report);
+        }
+        let mut converged = false;
+        for iteration in 0..s.newton_iterations {
+            let e = w.evaluate(model, h, false, Derivatives::Second)?;
+            if !e.finite {
+                report.status = if iteration == 0 {
+                    StepStatus::NonFiniteInput
+                } else {
+                    StepStatus::NumericalFailure
+                };
+                return Ok(report);
+            }
+            w.fill_rhs(h);
+            let residual = w.residual(h);
+            report.residual = Some(residual);
+            report.constraint_residual = Some(max_abs(&w.constraint));
+            if residual <= s.tolerance {
+                converged = true;
+                break;
+            }
+            match w.kkt.factorize(s.pivot_epsilon, s.regularization) {
+                FactorOutcome::Factored { regularized } => report.regularized_pivots += regularized,
+                FactorOutcome::NonFinite { .. } => {
+                    report.status = StepStatus::NumericalFailure;
+                    return Ok(report);
+                }
+            }
+            let refinement = w.kkt.solve_refined(
+                &mut w.solution,
+                &w.rhs,
+                s.refinement_steps,
+                s.refinement_tolerance,
+            );
+            report.iterations += 1;
+            report.refinement_steps += refinement.steps;
+            if !(refinement.relative_residual.is_finite() && max_abs(&w.solution).is_finite()) {
+                report.status = StepStatus::NumericalFailure;
+                return Ok(report);
+            }
+            if refinement.relative_residual > report.linear_residual {
+                report.linear_residual = refinement.relative_residual;
+            }
+            let dofs = w.kkt.pattern.dofs;
+            if s.line_search {
+                let mu = T::from_f64(1.1) * max_abs(&w.solution[dofs..]);
+                let mu = if mu > T::from_f64(0.05) {
+                    mu
+                } else {
+                    T::from_f64(0.05)
+                };
+                let before = e.energy + mu * norm2(&w.constraint);
+                report.merit_before = Some(before);
+                report.merit_after = None;
+                let mut alpha = T::ONE;
+                let mut accepted = false;
+                for halving in 0..=s.max_halvings {
+                    w.set_trial(alpha);
+                    let t = w.evaluate(model, h, true, Derivatives::None)?;
+                    let merit = t.energy + mu * norm2(&w.constraint);
+                    if t.finite && merit.is_finite() && merit < before {
+                        report.halvings += halving;
+                        report.merit_after = Some(merit);
+                        report.constraint_residual = Some(max_abs(&w.constraint));
+                        accepted = true;
+                        break;
+                    }
+                    alpha *= T::HALF;
+                }
+                if !accepted {
+                    report.halvings += s.max_halvings;
+                    report.status = StepStatus::LineSearchFailed;
+                    return Ok(report);
+                }
+                core::mem::swap(&mut w.x, &mut w.trial);
+            } else {
+                w.set_trial(T::ONE);
+                core::mem::swap(&mut w.x, &mut w.trial);
+                report.constraint_residual = None;
+            }
+            let (_, lambda) = w.solution.split_at(dofs);
+            w.lambda.copy_from_slice(lambda);
+            report.residual = None;
+        }
+        if !converged && s.check_final_residual {
+            let e = w.evaluate(model, h, false, Derivatives::First)?;
+            if !e.finite {
+                report.status = StepStatus::NumericalFailure;
+                return Ok(report);
+            }
+            w.fill_rhs(h);
+            let residual = w.residual(h);
+            report.residual = Some(residual);
+            report.constraint_residual = Some(max_abs(&w.constraint));
+            converged = residual <= s.tolerance;
+        }
+        report.status = if converged {
+            StepStatus::Converged
+        } else {
+            StepStatus::IterationLimit
+        };
+        w.commit(state, h);
+        Ok(report)
+    }
+}
+
+/// $\lVert v\rVert_2$.
+fn norm2<T: Real>(v: &[T]) -> T {
+    let mut sum = T::ZERO;
+    for &x in v {
+        sum += x * x;
+    }
+    math::sqrt(sum)
+}
+
+impl<T: Real> Workspace<T> {
+    /// Loads $x^{(k-1)}$, $\bar x$ and the masses; `Ok(false)` for a non-finite state.
+    fn begin<M: Model<T>>(
+        &mut self,
+        model: &M,
+        state: &State<T>,
+        h: T,
+    ) -> Result<bool, SolverError> {
+        let nodes = self.x.len();
+        if state.x.len() != nodes || state.v.len() != nodes {
+            return Err(SolverError::StateLength {
+                expected: nodes,
+                positions: state.x.len(),
+                velocities: state.v.len(),
+            });
+        }
+        let finite = |v: &T::Vec3| v.x().is_finite() && v.y().is_finite() && v.z().is_finite();
+        if !(state.x.iter().all(finite) && state.v.iter().all(finite)) {
+            return Ok(false);
+        }
+        for (d, &c) in self.kkt.pattern.coordinate_of.iter().enumerate() {
+            let (node, axis) = (c as usize / 3, c as usize % 3);
+            let m = model.mass(node);
+            if !(m.is_finite() && m > T::ZERO) {
+                return Err(SolverError::NonPositiveMass { node });
+            }
+            self.mass[d] = m;
+            self.x_prev[d] = state.x[node].get(axis);
+            self.x_bar[d] = self.x_prev[d] + h * state.v[node].get(axis);
+        }
+        self.x.copy_from_slice(&state.x);
+        self.lambda.iter_mut().for_each(|l| *l = T::ZERO);
+        Ok(true)
+    }
+
+    /// Evaluates the model at the iterate (or the trial point): $E$, $C$ and the requested
+    /// derivatives into the KKT values (mass diagonal included) and the gradient.
+    fn evaluate<M: Model<T>>(
+        &mut self,
+        model: &M,
+        h: T,
+        trial: bool,
+        derivatives: Derivatives,
+    ) -> Result<Evaluation<T>, SolverError> {
+        let pattern = &self.kkt.pattern;
+        let x = if trial { &self.trial } else { &self.x };
+        if derivatives != Derivatives::None {
+            self.kkt.values.iter_mut().for_each(|v| *v = T::ZERO);
+            self.gradient.iter_mut().for_each(|v| *v = T::ZERO);
+        }
+        let mut visitor = Assemble {
+            pattern,
+            x,
+            lambda: &self.lambda,
+            values: &mut self.kkt.values,
+            gradient: &mut self.gradient,
+            constraint: &mut self.constraint,
+            derivatives,
+            energy: T::ZERO,
+            family: 0,
+            mismatch: false,
+        };
+        model.visit_terms(&mut visitor);
+        if visitor.mismatch || visitor.family != pattern.families.len() {
+            return Err(SolverError::ModelChanged);
+        }
+        let potential = visitor.energy;
+        let inv_h2 = T::ONE / (h * h);
+        let mut inertia = T::ZERO;
+        for (d, &c) in pattern.coordinate_of.iter().enumerate() {
+            let dx = x[c as usize / 3].get(c as usize % 3) - self.x_bar[d];
+            inertia += self.mass[d] * dx * dx;
+            if derivatives != Derivatives::None {
+                self.kkt.values[pattern.diagonal_slot(d)] += self.mass[d] * inv_h2;
+            }
+        }
+        let energy = T::HALF * inv_h2 * inertia + potential;
+        let mut finite = energy.is_finite() && max_abs(&self.constraint).is_finite();
+        if derivatives != Derivatives::None {
+            finite = finite && max_abs(&self.gradient).is_finite();
+            finite = finite && max_abs(&self.kkt.values).is_finite();
+        }
+        Ok(Evaluation { energy, finite })
+    }
+
+    /// $b = -[M/h^2(x - \bar x) + \nabla V;\ C]$ from the last evaluation.
+    fn fill_rhs(&mut self, h: T) {
+        let inv_h2 = T::ONE / (h * h);
+        let dofs = self.kkt.pattern.dofs;
+        for (d, &c) in self.kkt.pattern.coordinate_of.iter().enumerate() {
+            let x = self.x[c as usize / 3].get(c as usize % 3);
+            self.rhs[d] = -(self.mass[d] * inv_h2 * (x - self.x_bar[d]) + self.gradient[d]);
+        }
+        for (r, &c) in self.rhs[dofs..].iter_mut().zip(&self.constraint) {
+            *r = -c;
+        }
+    }
+
+    /// The eq. 3 residual $\max(\lVert h^2 M^{-1}(\nabla E + \nabla C^\top \lambda)\rVert_\infty,
+    /// \lVert C\rVert_\infty)$ from the last evaluation and `fill_rhs`.
+    fn residual(&mut self, h: T) -> T {
+        let dofs = self.kkt.pattern.dofs;
+        self.solution[..dofs].iter_mut().for_each(|v| *v = T::ZERO);
+        self.solution[dofs..].copy_from_slice(&self.lambda);
+        self.kkt.multiply(&mut self.product, &self.solution);
+        let mut worst = max_abs(&self.constraint);
+        for d in 0..dofs {
+            // rhs = -grad E, product = J^T lambda.
+            let r = h * h / self.mass[d] * (self.product[d] - self.rhs[d]);
+            let r = if r < T::ZERO { -r } else { r };
+            if r > worst || !r.is_finite() {
+                worst = r;
+            }
+        }
+        worst
+    }
+
+    /// `trial = x + alpha * dx` on the free coordinates.
+    fn set_trial(&mut self, alpha: T) {
+        self.trial.copy_from_slice(&self.x);
+        for (d, &c) in self.kkt.pattern.coordinate_of.iter().enumerate() {
+            let (node, axis) = (c as usize / 3, c as usize % 3);
+            let step = T::Vec3::AXES[axis] * (alpha * self.solution[d]);
+            self.trial[node] += step;
+        }
+    }
+
+    /// Writes the iterate and $v = (x - x^{(k-1)})/h$ into `state`.
+    fn commit(&self, state: &mut State<T>, h: T) {
+        let inv_h = T::ONE / h;
+        for ((x, v), &new) in state.x.iter_mut().zip(state.v.iter_mut()).zip(&self.x) {
+            *v = (new - *x) * inv_h;
+            *x = new;
+        }
+    }
+}
