@@ -10,6 +10,10 @@ use crate::ordering::Ordering;
 use crate::pattern::KktPattern;
 use crate::symbolic::Symbolic;
 
+/// Most primal shifts of [`Kkt::factorize_with_inertia_correction`] ($\beta$ up to
+/// $10^{3}$ times the largest primal diagonal).
+pub const MAX_SHIFTS: u32 = 8;
+
 /// Result of a refined solve.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Refinement<T> {
@@ -120,6 +124,46 @@ impl<T: Real> Kkt<T> {
             epsilon_rel,
             delta_rel,
         )
+    }
+
+    /// [`Kkt::factorize`], shifting the primal block by $\beta I$ until its pivots come out
+    /// positive (inertia correction, as in interior-point and SQP codes): a regularized or
+    /// non-finite primal pivot means the Hessian is indefinite where it was eliminated, and a
+    /// tiny $+\delta$ in its place would make the factor explode. $\beta$ starts at
+    /// $10^{-4} P$ ($P$ the largest primal diagonal) and grows tenfold, at most
+    /// [`MAX_SHIFTS`] times. The shift stays in the values, so the solve and its refinement
+    /// are of the shifted (convexified) system. Returns the outcome and $\beta$ (0 if none).
+    pub fn factorize_with_inertia_correction(
+        &mut self,
+        epsilon_rel: T,
+        delta_rel: T,
+    ) -> (FactorOutcome, T) {
+        let first = T::from_f64(1e-4) * self.primal_scale();
+        let mut shift = T::ZERO;
+        let mut attempt = 0;
+        loop {
+            let outcome = self.factorize(epsilon_rel, delta_rel);
+            let indefinite = !matches!(
+                outcome,
+                FactorOutcome::Factored {
+                    regularized_primal: 0,
+                    ..
+                }
+            );
+            if !indefinite || attempt == MAX_SHIFTS {
+                return (outcome, shift);
+            }
+            let next = if shift == T::ZERO {
+                first
+            } else {
+                shift * T::from_f64(10.0)
+            };
+            for k in 0..self.pattern.dofs {
+                self.values[self.pattern.diagonal_slot(k)] += next - shift;
+            }
+            shift = next;
+            attempt += 1;
+        }
     }
 
     /// Solves $K z = b$ with the current factor, then refines $z \leftarrow z + \hat K^{-1}(b - K z)$

@@ -20,6 +20,9 @@ pub enum FactorOutcome {
     Factored {
         /// Number of regularized pivots.
         regularized: usize,
+        /// How many of them were primal: the primal block is not positive definite where
+        /// it is eliminated (an indefinite Hessian, e.g. with the constraint Hessian on).
+        regularized_primal: usize,
     },
     /// A pivot came out NaN or infinite (non-finite matrix values).
     NonFinite {
@@ -62,7 +65,7 @@ impl<T: Real> Ldlt<T> {
     ) -> FactorOutcome {
         let s = symbolic;
         let y = &mut self.work;
-        let mut regularized = 0;
+        let (mut regularized, mut regularized_primal) = (0, 0);
         for (k, &pivot_scale) in scale.iter().enumerate().take(s.n) {
             let mut diagonal = T::ZERO;
             for e in s.a_ptr[k] as usize..s.a_ptr[k + 1] as usize {
@@ -96,10 +99,14 @@ impl<T: Real> Ldlt<T> {
             if sign * diagonal <= epsilon * pivot_scale {
                 diagonal = sign * delta * pivot_scale;
                 regularized += 1;
+                regularized_primal += usize::from(s.signs[k] > 0);
             }
             self.d[k] = diagonal;
         }
-        FactorOutcome::Factored { regularized }
+        FactorOutcome::Factored {
+            regularized,
+            regularized_primal,
+        }
     }
 
     /// Solves $L D L^\top z = b$ in place in the new order (`x` holds $P b$ on entry).

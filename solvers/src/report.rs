@@ -52,6 +52,9 @@ pub struct StepReport<T> {
     /// factorizations. Nonzero with the default ordering means a (numerically) singular KKT:
     /// redundant or conflicting constraints.
     pub regularized_pivots: usize,
+    /// Largest shift $\beta$ added to the primal block to make it positive definite
+    /// ([`crate::Kkt::factorize_with_inertia_correction`]); 0 when the Hessian was.
+    pub hessian_shift: T,
     /// Iterative-refinement steps over all solves.
     pub refinement_steps: u32,
     /// The symbolic analysis was (re)built in this step (topology change or first step).

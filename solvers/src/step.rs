@@ -6,8 +6,16 @@
 //! on its KKT conditions, starting from $x^{(k-1)}$ and $\lambda = 0$:
 //! $$\begin{bmatrix} M/h^2 + \nabla^2 V\ (+\textstyle\sum_l\lambda_l\nabla^2 C_l) & \nabla C^\top \\ \nabla C & 0\end{bmatrix}
 //! \begin{bmatrix}\Delta x \\ \lambda^+\end{bmatrix} = -\begin{bmatrix} M/h^2(x-\bar x) + \nabla V \\ C(x)\end{bmatrix},$$
-//! optionally backtracking on $\psi = E + \mu\lVert C\rVert_2$, $\mu = \max(1.1\max|\lambda^+|, 0.05)$,
-//! then $v = (x - x^{(k-1)})/h$.
+//! optionally backtracking on $\psi = E + \mu\lVert C\rVert_2$, $\mu = \max(1.1\lVert\lambda^+\rVert_2, 0.05)$,
+//! at most `max_halvings` times, then $v = (x - x^{(k-1)})/h$.
+//!
+//! The penalty uses $\lVert\lambda^+\rVert_2$, not the $\max|\lambda^+|$ that DESIGN.md quotes
+//! from RHS19: the Newton direction is a descent direction of the $\ell_2$ merit when
+//! $\mu \ge \lVert\lambda^+\rVert_2$ (the dual norm of $\ell_2$), because
+//! $D\psi \le -\Delta x^\top B\, \Delta x + \lambda^{+\top} C - \mu\lVert C\rVert_2$. With many
+//! active constraints $\max|\lambda|$ is several times too small and the search fails (seen on
+//! the hanging chain). A trial whose merit exceeds $\psi$ by at most $16\varepsilon|\psi|$
+//! (rounding noise at convergence) is accepted.
 
 use alloc::vec;
 use alloc::vec::Vec;
@@ -213,6 +221,7 @@ impl<T: Real> Solver<T> {
             merit_after: None,
             halvings: 0,
             regularized_pivots: 0,
+            hessian_shift: T::ZERO,
             refinement_steps: 0,
             analysed,
         };
@@ -241,8 +250,16 @@ impl<T: Real> Solver<T> {
                 converged = true;
                 break;
             }
-            match w.kkt.factorize(s.pivot_epsilon, s.regularization) {
-                FactorOutcome::Factored { regularized } => report.regularized_pivots += regularized,
+            let (outcome, shift) = w
+                .kkt
+                .factorize_with_inertia_correction(s.pivot_epsilon, s.regularization);
+            if shift > report.hessian_shift {
+                report.hessian_shift = shift;
+            }
+            match outcome {
+                FactorOutcome::Factored { regularized, .. } => {
+                    report.regularized_pivots += regularized;
+                }
                 FactorOutcome::NonFinite { .. } => {
                     report.status = StepStatus::NumericalFailure;
                     return Ok(report);
@@ -265,35 +282,15 @@ impl<T: Real> Solver<T> {
             }
             let dofs = w.kkt.pattern.dofs;
             if s.line_search {
-                let mu = T::from_f64(1.1) * max_abs(&w.solution[dofs..]);
-                let mu = if mu > T::from_f64(0.05) {
-                    mu
-                } else {
-                    T::from_f64(0.05)
-                };
-                let before = e.energy + mu * norm2(&w.constraint);
-                report.merit_before = Some(before);
-                report.merit_after = None;
-                let mut alpha = T::ONE;
-                let mut accepted = false;
-                for halving in 0..=s.max_halvings {
-                    w.set_trial(alpha);
-                    let t = w.evaluate(model, h, true, Derivatives::None)?;
-                    let merit = t.energy + mu * norm2(&w.constraint);
-                    if t.finite && merit.is_finite() && merit < before {
-                        report.halvings += halving;
-                        report.merit_after = Some(merit);
-                        report.constraint_residual = Some(max_abs(&w.constraint));
-                        accepted = true;
-                        break;
-                    }
-                    alpha *= T::HALF;
-                }
-                if !accepted {
-                    report.halvings += s.max_halvings;
+                let search = w.line_search(model, h, e.energy, s.max_halvings)?;
+                report.merit_before = Some(search.before);
+                report.merit_after = search.after;
+                report.halvings += search.halvings;
+                if search.after.is_none() {
                     report.status = StepStatus::LineSearchFailed;
                     return Ok(report);
                 }
+                report.constraint_residual = Some(max_abs(&w.constraint));
                 core::mem::swap(&mut w.x, &mut w.trial);
             } else {
                 w.set_trial(T::ONE);
@@ -324,6 +321,15 @@ impl<T: Real> Solver<T> {
         w.commit(state, h);
         Ok(report)
     }
+}
+
+/// Outcome of one backtracking line search.
+#[derive(Clone, Copy, Debug)]
+struct LineSearch<T> {
+    before: T,
+    /// Merit at the accepted point; `None` when every halving failed.
+    after: Option<T>,
+    halvings: u32,
 }
 
 /// $\lVert v\rVert_2$.
@@ -450,6 +456,50 @@ impl<T: Real> Workspace<T> {
             }
         }
         worst
+    }
+
+    /// Backtracks from $\alpha = 1$ along the solved direction until the merit
+    /// $\psi = E + \mu\lVert C\rVert_2$ does not increase (module docs); the accepted point is
+    /// left in `trial` and its $C$ in `constraint`. `energy` is $E$ at the iterate, whose $C$
+    /// is in `constraint` on entry.
+    fn line_search<M: Model<T>>(
+        &mut self,
+        model: &M,
+        h: T,
+        energy: T,
+        max_halvings: u32,
+    ) -> Result<LineSearch<T>, SolverError> {
+        let dofs = self.kkt.pattern.dofs;
+        let mu = T::from_f64(1.1) * norm2(&self.solution[dofs..]);
+        let mu = if mu > T::from_f64(0.05) {
+            mu
+        } else {
+            T::from_f64(0.05)
+        };
+        let before = energy + mu * norm2(&self.constraint);
+        // Changes of psi below its rounding noise count as no increase, so that a step at
+        // convergence is not refused for noise.
+        let magnitude = if before < T::ZERO { -before } else { before };
+        let ceiling = before + T::from_f64(16.0) * T::EPSILON * magnitude;
+        let mut alpha = T::ONE;
+        for halvings in 0..=max_halvings {
+            self.set_trial(alpha);
+            let t = self.evaluate(model, h, true, Derivatives::None)?;
+            let merit = t.energy + mu * norm2(&self.constraint);
+            if t.finite && merit.is_finite() && merit <= ceiling {
+                return Ok(LineSearch {
+                    before,
+                    after: Some(merit),
+                    halvings,
+                });
+            }
+            alpha *= T::HALF;
+        }
+        Ok(LineSearch {
+            before,
+            after: None,
+            halvings: max_halvings,
+        })
     }
 
     /// `trial = x + alpha * dx` on the free coordinates.

@@ -1,0 +1,88 @@
+//! A step on an analysed topology allocates nothing (DESIGN.md: "setup allocates; stepping
+//! does not"), held by a counting global allocator.
+// A global allocator is an `unsafe impl`; this test binary is the only place that needs one.
+#![allow(unsafe_code)]
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use folio_kernels::Real;
+use folio_solvers::{Model, Settings, Solver, State};
+use folio_tests::models::{Chain, DogSheet};
+
+struct Counting;
+
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        // SAFETY: forwarded unchanged to the system allocator.
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: `ptr` came from `System.alloc` with this layout.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        // SAFETY: as `realloc`'s contract, forwarded.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// Allocations made by `steps` steps after the first (setup) step.
+fn allocations_after_setup<T: Real, M: Model<T>>(
+    model: &M,
+    state: &mut State<T>,
+    settings: Settings<T>,
+    steps: usize,
+) -> usize {
+    let mut solver = Solver::new(settings).unwrap();
+    assert!(solver.step(model, state).unwrap().analysed);
+    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    for _ in 0..steps {
+        let report = solver.step(model, state).unwrap();
+        assert!(report.status.advanced(), "{report:?}");
+    }
+    ALLOCATIONS.load(Ordering::SeqCst) - before
+}
+
+#[test]
+fn steps_after_setup_do_not_allocate() {
+    // Everything in one test: the counter is global and tests run on threads.
+    let sheet = DogSheet::<f64>::new(11, 8, 12.0 / 11.0);
+    let mut state = sheet.rolled(6.0);
+    let n = allocations_after_setup(&sheet, &mut state, Settings::default(), 10);
+    assert_eq!(n, 0, "f64 DOG sheet, default settings");
+
+    let mut sheet = DogSheet::<f32>::new(11, 8, 12.0 / 11.0);
+    let mut state = sheet.rolled(6.0);
+    sheet.set_target(state.x[sheet.grabbed_node()]);
+    let settings = Settings {
+        newton_iterations: 3,
+        constraint_hessian: true,
+        ..Settings::default()
+    };
+    let n = allocations_after_setup(&sheet, &mut state, settings, 10);
+    assert_eq!(
+        n, 0,
+        "f32 DOG sheet, three iterations with the constraint Hessian"
+    );
+
+    let chain = Chain::<f64>::new(10, 0.3, 0.1);
+    let x = (0..=10)
+        .map(|k| glam::DVec3::new(0.2 * k as f64, -0.1 * (k.min(10 - k) as f64), 0.0))
+        .collect();
+    let mut state = State::at_rest(x);
+    let settings = Settings {
+        newton_iterations: 4,
+        line_search: true,
+        ..Settings::default()
+    };
+    let n = allocations_after_setup(&chain, &mut state, settings, 10);
+    assert_eq!(n, 0, "chain with line search");
+}

@@ -1,0 +1,227 @@
+//! The implicit-Euler SQP step: Newton's quadratic convergence, the hanging chain's static
+//! equilibrium, bad input, redundant constraints and settings validation.
+
+use folio_kernels::{Real, Vec3Ops};
+use folio_solvers::{Settings, Solver, SolverError, State, StepStatus};
+use folio_tests::models::{Chain, DogSheet, hanging_chain};
+
+const LINKS: usize = 10;
+const LENGTH: f64 = 0.3;
+const MASS: f64 = 0.1;
+
+/// The chain hung as a "V" between `(0, 0)` and `(span, 0)`: exact link lengths.
+fn v_shape<T: Real>(span: f64) -> State<T> {
+    let cos = span / (LINKS as f64 * LENGTH);
+    let sin = (1.0 - cos * cos).sqrt();
+    let x = (0..=LINKS)
+        .map(|k| {
+            let down = k.min(LINKS - k) as f64;
+            T::Vec3::new(
+                T::from_f64(k as f64 * LENGTH * cos),
+                T::from_f64(-down * LENGTH * sin),
+                T::ZERO,
+            )
+        })
+        .collect();
+    State::at_rest(x)
+}
+
+/// Residual after `iterations` Newton iterations of one step from `start`.
+fn residual_after(iterations: u32, start: &State<f64>, chain: &Chain<f64>) -> f64 {
+    let settings = Settings {
+        time_step: 0.1,
+        newton_iterations: iterations,
+        constraint_hessian: true,
+        line_search: false,
+        tolerance: 0.0,
+        ..Settings::default()
+    };
+    let mut solver = Solver::new(settings).unwrap();
+    let mut state = start.clone();
+    let report = solver.step(chain, &mut state).unwrap();
+    assert_eq!(report.iterations, iterations);
+    report.residual.unwrap()
+}
+
+#[test]
+fn newton_converges_quadratically_with_the_constraint_hessian() {
+    let chain = Chain::<f64>::new(LINKS, LENGTH, MASS);
+    let mut start = v_shape::<f64>(2.0);
+    // A kick so that the first iterate is far from the solution.
+    for (k, v) in start.v.iter_mut().enumerate() {
+        *v = glam::DVec3::new(0.0, if k % 2 == 0 { 3.0 } else { -2.0 }, 0.5);
+    }
+    let r: Vec<f64> = (1..=9).map(|k| residual_after(k, &start, &chain)).collect();
+    println!("residual per iteration: {r:?}");
+    let mut quadratic_steps = 0;
+    for w in r.windows(2) {
+        if w[0] < 1e-2 && w[0] > 1e-9 {
+            // Quadratic down to the rounding floor: r_{k+1} <= C r_k^2 + floor.
+            let floor = 1e-14;
+            assert!(
+                w[1] <= 10.0 * w[0] * w[0] + floor,
+                "not quadratic: {:e} -> {:e}",
+                w[0],
+                w[1]
+            );
+            quadratic_steps += 1;
+        }
+    }
+    assert!(
+        quadratic_steps >= 2,
+        "too few iterations in the quadratic range: {r:?}"
+    );
+    assert!(r[8] <= 1e-12, "final residual {:e}", r[8]);
+}
+
+#[test]
+fn hanging_chain_settles_to_the_static_equilibrium() {
+    let span = 2.0;
+    let chain = Chain::<f64>::new(LINKS, LENGTH, MASS);
+    let mut state = v_shape::<f64>(span);
+    let settings = Settings {
+        time_step: 0.2,
+        newton_iterations: 3,
+        tolerance: 1e-12,
+        ..Settings::default()
+    };
+    let mut solver = Solver::new(settings).unwrap();
+    for _ in 0..400 {
+        let report = solver.step(&chain, &mut state).unwrap();
+        assert!(report.status.advanced(), "{report:?}");
+    }
+    let expected = hanging_chain(LINKS, LENGTH, MASS, span);
+    let mut worst: f64 = 0.0;
+    for (x, e) in state.x.iter().zip(&expected) {
+        worst = worst.max((x.x - e[0]).abs().max((x.y - e[1]).abs()).max(x.z.abs()));
+    }
+    println!("max distance to the independent equilibrium: {worst:.2e}");
+    assert!(worst <= 1e-8, "distance {worst:e}");
+}
+
+#[test]
+fn non_finite_state_or_input_leaves_the_state_untouched() {
+    let chain = Chain::<f64>::new(LINKS, LENGTH, MASS);
+    let mut solver = Solver::new(Settings::default()).unwrap();
+    let mut state = v_shape::<f64>(2.0);
+    state.v[3].y = f64::NAN;
+    let before = format!("{state:?}");
+    let report = solver.step(&chain, &mut state).unwrap();
+    assert_eq!(report.status, StepStatus::NonFiniteInput);
+    assert_eq!(format!("{state:?}"), before);
+
+    let mut sheet = DogSheet::<f32>::new(11, 8, 12.0 / 11.0);
+    let mut state = sheet.rolled(6.0);
+    let mut solver = Solver::new(Settings::default()).unwrap();
+    assert!(solver.step(&sheet, &mut state).unwrap().status.advanced());
+    sheet.set_target(glam::Vec3A::new(f32::NAN, 0.0, 0.0));
+    let before = format!("{state:?}");
+    let report = solver.step(&sheet, &mut state).unwrap();
+    assert_eq!(report.status, StepStatus::NonFiniteInput);
+    assert_eq!(format!("{state:?}"), before);
+}
+
+#[test]
+fn redundant_constraints_are_regularized_and_reported() {
+    let mut chain = Chain::<f64>::new(LINKS, LENGTH, MASS);
+    chain.duplicate_links();
+    let mut solver = Solver::new(Settings::default()).unwrap();
+    let mut state = v_shape::<f64>(2.0);
+    let report = solver.step(&chain, &mut state).unwrap();
+    println!("{report:?}");
+    assert!(report.status.advanced(), "{report:?}");
+    assert!(report.regularized_pivots >= LINKS, "{report:?}");
+    assert!(state.x.iter().all(|p| p.is_finite()));
+    // The healthy chain reports none.
+    let chain = Chain::<f64>::new(LINKS, LENGTH, MASS);
+    let mut state = v_shape::<f64>(2.0);
+    let report = Solver::new(Settings::default())
+        .unwrap()
+        .step(&chain, &mut state)
+        .unwrap();
+    assert_eq!(report.regularized_pivots, 0, "{report:?}");
+}
+
+#[test]
+fn topology_change_reruns_the_analysis_and_nothing_else_does() {
+    let mut chain = Chain::<f64>::new(LINKS, LENGTH, MASS);
+    let mut solver = Solver::new(Settings::default()).unwrap();
+    let mut state = v_shape::<f64>(2.0);
+    assert!(solver.step(&chain, &mut state).unwrap().analysed);
+    assert!(!solver.step(&chain, &mut state).unwrap().analysed);
+    chain.duplicate_links();
+    assert!(solver.step(&chain, &mut state).unwrap().analysed);
+    assert!(!solver.step(&chain, &mut state).unwrap().analysed);
+}
+
+#[test]
+fn bad_settings_get_typed_errors() {
+    let cases: [(Settings<f64>, &str); 5] = [
+        (
+            Settings {
+                time_step: 0.0,
+                ..Settings::default()
+            },
+            "time_step",
+        ),
+        (
+            Settings {
+                time_step: -0.01,
+                ..Settings::default()
+            },
+            "time_step",
+        ),
+        (
+            Settings {
+                time_step: f64::NAN,
+                ..Settings::default()
+            },
+            "time_step",
+        ),
+        (
+            Settings {
+                newton_iterations: 0,
+                ..Settings::default()
+            },
+            "newton_iterations",
+        ),
+        (
+            Settings {
+                tolerance: f64::INFINITY,
+                ..Settings::default()
+            },
+            "tolerance",
+        ),
+    ];
+    for (settings, name) in cases {
+        match Solver::new(settings) {
+            Err(SolverError::InvalidSetting { field, .. }) => assert_eq!(field, name),
+            other => panic!("{name}: {other:?}"),
+        }
+    }
+    let mut solver = Solver::<f64>::new(Settings::default()).unwrap();
+    let bad = Settings {
+        regularization: 0.0,
+        ..Settings::default()
+    };
+    assert!(solver.set_settings(bad).is_err());
+    assert_eq!(*solver.settings(), Settings::default());
+}
+
+#[test]
+fn wrong_state_length_is_an_error() {
+    let chain = Chain::<f64>::new(LINKS, LENGTH, MASS);
+    let mut state = v_shape::<f64>(2.0);
+    state.x.pop();
+    let err = Solver::new(Settings::default())
+        .unwrap()
+        .step(&chain, &mut state);
+    assert!(matches!(
+        err,
+        Err(SolverError::StateLength {
+            expected: 11,
+            positions: 10,
+            ..
+        })
+    ));
+}
