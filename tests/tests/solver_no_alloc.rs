@@ -3,8 +3,9 @@
 // A global allocator is an `unsafe impl`; this test binary is the only place that needs one.
 #![allow(unsafe_code)]
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use core::alloc::{GlobalAlloc, Layout};
+use core::sync::atomic::{AtomicUsize, Ordering};
+use std::alloc::System;
 
 use folio_kernels::Real;
 use folio_solvers::{Model, Settings, Solver, State};
