@@ -1,6 +1,8 @@
 //! Shared inputs for Folio's criterion benches (see `benches/`), and the baselines they are
 //! measured against.
 
+pub mod kkt;
+
 use folio_kernels::Real;
 use folio_kernels::real::Vec3Ops;
 

@@ -6,6 +6,10 @@
 //! The expected pivot sign $s_k$ is known (+ primal, − constraint row); a pivot with
 //! $s_k d_k \le \epsilon$ is replaced by $s_k \delta$ and counted. The factor is then that of
 //! $K + E$ with a small diagonal $E$, which iterative refinement against $K$ corrects.
+//! Constraint rows that the ordering eliminates before any unknown they couple to have a
+//! structurally zero pivot; they take $-\delta$ always (static regularization, as in
+//! quasi-definite solvers) and are not counted, so the count still means a (numerically)
+//! singular system.
 
 use alloc::vec;
 use alloc::vec::Vec;
@@ -96,7 +100,9 @@ impl<T: Real> Ldlt<T> {
                 return FactorOutcome::NonFinite { pivot: k };
             }
             let sign = if s.signs[k] > 0 { T::ONE } else { -T::ONE };
-            if sign * diagonal <= epsilon * pivot_scale {
+            if s.structural_zero[k] {
+                diagonal = sign * delta * pivot_scale;
+            } else if sign * diagonal <= epsilon * pivot_scale {
                 diagonal = sign * delta * pivot_scale;
                 regularized += 1;
                 regularized_primal += usize::from(s.signs[k] > 0);

@@ -30,6 +30,10 @@ pub struct Symbolic {
     pub(crate) a_row: Vec<u32>,
     /// Slot in the KKT value array of each permuted upper entry.
     pub(crate) a_slot: Vec<u32>,
+    /// Constraint rows eliminated before any unknown they couple to: their pivot is exactly
+    /// 0 whatever the values (an empty row of $L$ and a zero diagonal), so the numeric phase
+    /// regularizes them statically and does not count them.
+    pub structural_zero: Vec<bool>,
     /// Elimination tree: parent of each column, or [`NONE`] for a root.
     pub parent: Vec<u32>,
     /// Column pointers of the strictly lower part of $L$.
@@ -54,10 +58,7 @@ impl Symbolic {
         for (new, &old) in perm.iter().enumerate() {
             inverse[old as usize] = new as u32;
         }
-        let signs = perm
-            .iter()
-            .map(|&old| if (old as usize) < pattern.dofs { 1 } else { -1 })
-            .collect();
+        let signs = (0..n).map(|k| signs_of(&perm, pattern.dofs, k)).collect();
 
         // Permuted upper triangle: entry (r, c) lands in column max(r', c') at row min.
         let mut a_ptr = vec![0u32; n + 1];
@@ -105,6 +106,9 @@ impl Symbolic {
             row_col[start..].sort_unstable();
             row_ptr[k + 1] = row_col.len() as u32;
         }
+        let structural_zero = (0..n)
+            .map(|k| signs_of(&perm, pattern.dofs, k) < 0 && row_ptr[k] == row_ptr[k + 1])
+            .collect();
         let mut l_ptr = col_count;
         prefix_sum(&mut l_ptr);
         let mut fill = l_ptr.clone();
@@ -123,6 +127,7 @@ impl Symbolic {
             n,
             perm,
             signs,
+            structural_zero,
             a_ptr,
             a_row,
             a_slot,
@@ -153,6 +158,11 @@ impl Symbolic {
             })
             .sum()
     }
+}
+
+/// Expected pivot sign of new index `k`.
+fn signs_of(perm: &[u32], dofs: usize, k: usize) -> i8 {
+    if (perm[k] as usize) < dofs { 1 } else { -1 }
 }
 
 /// In-place exclusive prefix sum of counts stored at `[1..]`.

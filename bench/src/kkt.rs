@@ -1,0 +1,168 @@
+//! DOG-shaped KKT systems for the solver benches and the `kkt_report` example, and faer's
+//! sparse and dense factorizations of the same matrices as baselines.
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
+use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering, factorize_symbolic_cholesky,
+};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Conj, Mat, MatMut, Par, Side};
+use folio_solvers::{Kkt, Ordering, Settings, Solver, State};
+use folio_tests::models::DogSheet;
+
+/// The DOG sheet sizes the issue asks for (quads across, quads along the binding).
+pub const SIZES: [(usize, usize); 4] = [(11, 8), (16, 12), (22, 16), (32, 24)];
+
+/// A DOG sheet of `quads` (page width 12, rolled on a radius-6 cylinder, the pull at the
+/// grabbed node's position), its state, and the first KKT system of a step with its RHS.
+pub struct DogKkt {
+    /// The model.
+    pub sheet: DogSheet<f64>,
+    /// The rolled state.
+    pub state: State<f64>,
+    /// The assembled and analysed KKT system.
+    pub kkt: Kkt<f64>,
+    /// Its right-hand side.
+    pub rhs: Vec<f64>,
+    /// The settings it was built with.
+    pub settings: Settings<f64>,
+}
+
+impl DogKkt {
+    /// Builds and analyses the system with `ordering`.
+    ///
+    /// # Panics
+    /// If the model cannot be linearized (a bench fixture).
+    #[must_use]
+    pub fn new(quads: (usize, usize), ordering: Ordering) -> Self {
+        let mut sheet = DogSheet::<f64>::new(quads.0, quads.1, 12.0 / quads.0 as f64);
+        let state = sheet.rolled(6.0);
+        sheet.set_target(state.x[sheet.grabbed_node()]);
+        let settings = Settings {
+            ordering,
+            ..Settings::default()
+        };
+        let mut solver = Solver::new(settings).expect("valid settings");
+        assert!(solver.linearize(&sheet, &state).expect("valid model"));
+        let kkt = solver.kkt().expect("analysed").clone();
+        let rhs = solver.rhs().expect("analysed").to_vec();
+        Self {
+            sheet,
+            state,
+            kkt,
+            rhs,
+            settings,
+        }
+    }
+
+    /// Refactorizes on the reused symbolic analysis and solves with refinement.
+    pub fn refactor_and_solve(&mut self, z: &mut [f64]) -> f64 {
+        let s = self.settings;
+        self.kkt.factorize(s.pivot_epsilon, s.regularization);
+        self.kkt
+            .solve_refined(z, &self.rhs, s.refinement_steps, s.refinement_tolerance)
+            .relative_residual
+    }
+
+    /// The expected pivot signs in the natural order (+1 primal, -1 constraint row).
+    #[must_use]
+    pub fn signs(&self) -> Vec<i8> {
+        let p = &self.kkt.pattern;
+        (0..p.order())
+            .map(|k| if k < p.dofs { 1 } else { -1 })
+            .collect()
+    }
+
+    /// faer's view of the upper-triangle matrix.
+    #[must_use]
+    pub fn faer_matrix(&self) -> SparseColMatRef<'_, u32, f64> {
+        let p = &self.kkt.pattern;
+        let n = p.order();
+        let symbolic = SymbolicSparseColMatRef::new_checked(n, n, &p.col_ptr, None, &p.row_idx);
+        SparseColMatRef::new(symbolic, &self.kkt.values)
+    }
+
+    /// The dense symmetric matrix (for the dense LU baseline).
+    #[must_use]
+    pub fn dense(&self) -> Mat<f64> {
+        let p = &self.kkt.pattern;
+        let n = p.order();
+        let mut m = Mat::<f64>::zeros(n, n);
+        for c in 0..n {
+            for s in p.col_ptr[c] as usize..p.col_ptr[c + 1] as usize {
+                let r = p.row_idx[s] as usize;
+                m[(r, c)] = self.kkt.values[s];
+                m[(c, r)] = self.kkt.values[s];
+            }
+        }
+        m
+    }
+}
+
+/// faer's symbolic Cholesky analysis (AMD) of `system`, simplicial or supernodal.
+#[must_use]
+pub fn faer_symbolic(system: &DogKkt, supernodal: Option<bool>) -> SymbolicCholesky<u32> {
+    let threshold = match supernodal {
+        None => SupernodalThreshold::AUTO,
+        Some(true) => SupernodalThreshold::FORCE_SUPERNODAL,
+        Some(false) => SupernodalThreshold::FORCE_SIMPLICIAL,
+    };
+    let params = CholeskySymbolicParams {
+        supernodal_flop_ratio_threshold: threshold,
+        ..CholeskySymbolicParams::default()
+    };
+    factorize_symbolic_cholesky(
+        system.faer_matrix().symbolic(),
+        Side::Upper,
+        SymmetricOrdering::Amd,
+        params,
+    )
+    .expect("symbolic analysis")
+}
+
+/// faer's numeric $LDL^\top$ on `symbolic` with the same sign-aware regularization as Folio,
+/// then a solve of the system's right-hand side into `z` (no refinement).
+pub fn faer_factor_and_solve(
+    system: &DogKkt,
+    symbolic: &SymbolicCholesky<u32>,
+    l_values: &mut [f64],
+    signs: &[i8],
+    z: &mut [f64],
+    par: Par,
+) {
+    let n = system.kkt.pattern.order();
+    let scale = system.kkt.primal_scale();
+    let regularization = LdltRegularization {
+        dynamic_regularization_signs: Some(signs),
+        dynamic_regularization_delta: system.settings.regularization * scale,
+        dynamic_regularization_epsilon: system.settings.pivot_epsilon * scale,
+    };
+    let req = symbolic
+        .factorize_numeric_ldlt_scratch::<f64>(par, Default::default())
+        .or(symbolic.solve_in_place_scratch::<f64>(1, par));
+    let mut buffer = MemBuffer::new(req);
+    let stack = MemStack::new(&mut buffer);
+    let ldlt = symbolic
+        .factorize_numeric_ldlt(
+            l_values,
+            system.faer_matrix(),
+            Side::Upper,
+            regularization,
+            par,
+            stack,
+            Default::default(),
+        )
+        .expect("numeric factorization");
+    z.copy_from_slice(&system.rhs);
+    let rhs = MatMut::from_column_major_slice_mut(z, n, 1);
+    ldlt.solve_in_place_with_conj(Conj::No, rhs, par, stack);
+}
+
+/// faer from scratch: AMD analysis, numeric factorization and solve.
+pub fn faer_from_scratch(system: &DogKkt, signs: &[i8], z: &mut [f64]) {
+    let symbolic = faer_symbolic(system, None);
+    let mut l = vec![0.0; symbolic.len_val()];
+    faer_factor_and_solve(system, &symbolic, &mut l, signs, z, Par::Seq);
+}
