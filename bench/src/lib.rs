@@ -1,6 +1,7 @@
 //! Shared inputs for Folio's criterion benches (see `benches/`), and the baselines they are
 //! measured against.
 
+pub mod book;
 pub mod kkt;
 
 use folio_kernels::Real;

@@ -20,6 +20,7 @@
 extern crate alloc;
 
 mod assembly;
+pub mod book;
 pub mod error;
 pub mod kkt;
 pub mod ldlt;
@@ -38,4 +39,4 @@ pub use model::{ConstraintSet, Model, PotentialSet, Term, TermVisitor};
 pub use ordering::Ordering;
 pub use report::{StepReport, StepStatus};
 pub use settings::Settings;
-pub use step::{Solver, State};
+pub use step::{Correction, Solver, State};

@@ -1,0 +1,64 @@
+//! Playing the book's recorded fixtures for benches and reports.
+
+use std::time::Instant;
+
+use folio_solvers::book::{Book, BookSettings, Script};
+
+/// The page-turn fixture (750 frames at 60 fps).
+pub const PAGE_TURN: &str = include_str!("../../tests/fixtures/page_turn.input");
+
+/// What one play of a fixture measured.
+#[derive(Clone, Debug, Default)]
+pub struct Play {
+    /// Wall time of every frame's step (input applied before it), seconds.
+    pub step_seconds: Vec<f64>,
+    /// Mean over frames with an active page of the maximum edge stretch.
+    pub max_stretch_mean: f64,
+    /// Mean over frames with an active page of the RMS edge stretch.
+    pub rms_stretch_mean: f64,
+    /// Largest DOG residual after any step.
+    pub dog_max: f64,
+    /// Frames with an active page.
+    pub active_frames: usize,
+}
+
+/// Plays `script` on a new book with `settings`, timing each step.
+///
+/// # Panics
+/// On a book or input the fixture should never produce (a bench harness).
+#[must_use]
+pub fn play(settings: BookSettings<f64>, script: &Script) -> Play {
+    let mut book = Book::new(settings).expect("book");
+    let mut out = Play::default();
+    let (mut max_sum, mut rms_sum) = (0.0, 0.0);
+    for frame in 0..script.frames {
+        for e in script.events_at(frame) {
+            book.apply(script.camera, script.forward, e.action)
+                .expect("input");
+        }
+        let t = Instant::now();
+        book.step().expect("step");
+        out.step_seconds.push(t.elapsed().as_secs_f64());
+        if let Some((max, rms)) = book.stretch() {
+            out.active_frames += 1;
+            max_sum += max;
+            rms_sum += rms;
+            out.dog_max = out.dog_max.max(book.dog_residual().unwrap_or(0.0));
+        }
+    }
+    let n = out.active_frames.max(1) as f64;
+    out.max_stretch_mean = max_sum / n;
+    out.rms_stretch_mean = rms_sum / n;
+    out
+}
+
+/// The `q`-quantile (0..=1) of `samples`.
+#[must_use]
+pub fn quantile(samples: &[f64], q: f64) -> f64 {
+    let mut s = samples.to_vec();
+    s.sort_by(f64::total_cmp);
+    if s.is_empty() {
+        return f64::NAN;
+    }
+    s[((s.len() - 1) as f64 * q).round() as usize]
+}

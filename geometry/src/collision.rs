@@ -1,0 +1,126 @@
+//! 2D collision projection (seed `000_…` Sec. 3.4). The page blocks are constant along Z, so
+//! contacts are resolved in the XY plane only: a point closer than a clearance $c$ to a
+//! segment $(a, b)$, on the segment's span, is translated along the segment normal $n$ (the
+//! side the point belongs on) until its signed distance is $c$:
+//! $$s = \frac{(p-a)\cdot(b-a)}{\lVert b-a\rVert^2} \in [0, 1],\quad d = (p - a)\cdot n,\quad
+//!   d < c \Rightarrow p \mathrel{+}= (c - d)\,n.$$
+//! The allowed side of every contact is known structurally (the active page lies above the
+//! blocks, the blocks above the cover, the cover above the table), which is what the seed
+//! reads from the initial configuration; it stays defined when a point is exactly on a
+//! segment or has passed through it.
+
+use folio_kernels::{Real, Vec3Ops, math};
+
+/// A segment in the XY plane with the unit normal of its allowed side and a clearance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Wall<T: Real> {
+    /// Start (Z ignored).
+    pub a: T::Vec3,
+    /// Direction `b - a` (Z zero).
+    pub along: T::Vec3,
+    /// `1 / |b - a|^2`.
+    pub inverse_length_sq: T,
+    /// Unit normal towards the allowed side (Z zero).
+    pub normal: T::Vec3,
+    /// Required distance from the segment on the allowed side (page units).
+    pub clearance: T,
+    /// The span continues past `b` (the last segment of a block: the seed assumes the active
+    /// page lies over the block, so a page edge reaching past the fore-edge still rests on it).
+    pub open_end: bool,
+}
+
+impl<T: Real> Wall<T> {
+    /// The segment `a -> b` (XY) whose allowed side is the one `toward` points into (any
+    /// vector with a positive component along that side's normal), with clearance `clearance`.
+    /// `None` for a degenerate segment or a `toward` parallel to it.
+    #[must_use]
+    pub fn new(a: T::Vec3, b: T::Vec3, toward: T::Vec3, clearance: T) -> Option<Self> {
+        let flat = |v: T::Vec3| T::Vec3::new(v.x(), v.y(), T::ZERO);
+        let along = flat(b - a);
+        let len_sq = along.dot(along);
+        let usable = len_sq > T::LENGTH_FLOOR * T::LENGTH_FLOOR && len_sq.is_finite();
+        if !usable {
+            return None;
+        }
+        let len = math::sqrt(len_sq);
+        let mut normal = T::Vec3::new(-along.y() / len, along.x() / len, T::ZERO);
+        let side = normal.dot(flat(toward));
+        if side == T::ZERO || !side.is_finite() {
+            return None;
+        }
+        if side < T::ZERO {
+            normal = -normal;
+        }
+        Some(Self {
+            a: flat(a),
+            along,
+            inverse_length_sq: T::ONE / len_sq,
+            normal,
+            clearance,
+            open_end: false,
+        })
+    }
+
+    /// How far `p` lies inside the clearance band (positive) when it projects onto the
+    /// segment's span; `None` when it does not or is clear.
+    #[inline]
+    #[must_use]
+    pub fn penetration(&self, p: T::Vec3) -> Option<T> {
+        let rel = T::Vec3::new(p.x() - self.a.x(), p.y() - self.a.y(), T::ZERO);
+        let s = rel.dot(self.along) * self.inverse_length_sq;
+        if !(s >= T::ZERO && (s <= T::ONE || self.open_end)) {
+            return None;
+        }
+        let depth = self.clearance - rel.dot(self.normal);
+        (depth > T::ZERO).then_some(depth)
+    }
+
+    /// Moves `p` out of the clearance band along the normal; returns the depth it had.
+    #[inline]
+    pub fn resolve(&self, p: &mut T::Vec3) -> Option<T> {
+        let depth = self.penetration(*p)?;
+        *p += self.normal * depth;
+        Some(depth)
+    }
+}
+
+/// A horizontal floor $y \ge$ `level` (the table, seed Sec. 3.4 "cover and table").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Floor<T> {
+    /// Lowest allowed Y (page units).
+    pub level: T,
+}
+
+impl<T: Real> Floor<T> {
+    /// Lifts `p` to the floor; returns the depth it had.
+    #[inline]
+    pub fn resolve(&self, p: &mut T::Vec3) -> Option<T> {
+        let depth = self.level - p.y();
+        (depth > T::ZERO).then(|| {
+            *p = T::Vec3::new(p.x(), self.level, p.z());
+            depth
+        })
+    }
+}
+
+/// What one collision pass did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Contacts<T> {
+    /// Points moved.
+    pub resolved: usize,
+    /// Largest depth resolved (page units).
+    pub max_depth: T,
+}
+
+impl<T: Real> Contacts<T> {
+    /// Records one resolved contact of depth `depth`.
+    #[inline]
+    pub fn record(&mut self, depth: Option<T>) {
+        if let Some(d) = depth {
+            self.resolved += 1;
+            if d > self.max_depth {
+                self.max_depth = d;
+            }
+        }
+    }
+}

@@ -1,0 +1,154 @@
+//! The active page's quad grid (seed `000_…` Sec. 3.1-3.2): vertex `(i, j)` has index
+//! `i + nx * j`, `i` across the page (X at rest, `i = 0` at the binding) and `j` along the
+//! binding (Z). Each vertex is classified by its grid neighbours into an inner star (four
+//! neighbours, three DOG constraints), a boundary star (three, one constraint) or a corner
+//! (two, none); the grid edges carry the isometry terms (eq. 13).
+
+use alloc::vec::Vec;
+
+/// A vertex's star with its neighbours in the order the DOG kernels expect.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Star {
+    /// `[p0, xf, yf, xb, yb]`: x-forward, y-forward, x-back, y-back.
+    Inner([usize; 5]),
+    /// `[p0, a, b, c]`: three consecutive neighbours counter-clockwise, the missing one after `c`.
+    Boundary([usize; 4]),
+    /// A corner vertex (two neighbours, no DOG constraint).
+    Corner(usize),
+}
+
+/// An `nx x nz` vertex grid (module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct QuadGrid {
+    /// Vertices across the page (along X at rest).
+    pub nx: usize,
+    /// Vertices along the binding (Z).
+    pub nz: usize,
+}
+
+impl QuadGrid {
+    /// A grid of `quads_x x quads_z` quads; `None` unless both are at least 1.
+    #[must_use]
+    pub fn new(quads_x: usize, quads_z: usize) -> Option<Self> {
+        (quads_x >= 1 && quads_z >= 1).then_some(Self {
+            nx: quads_x + 1,
+            nz: quads_z + 1,
+        })
+    }
+
+    /// Number of vertices.
+    #[inline]
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.nx * self.nz
+    }
+
+    /// `true` for a grid without vertices (never, for a grid from [`QuadGrid::new`]).
+    #[inline]
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Index of vertex `(i, j)`.
+    #[inline]
+    #[must_use]
+    pub fn index(&self, i: usize, j: usize) -> usize {
+        i + self.nx * j
+    }
+
+    /// `(i, j)` of vertex `k`.
+    #[inline]
+    #[must_use]
+    pub fn coords(&self, k: usize) -> (usize, usize) {
+        (k % self.nx, k / self.nx)
+    }
+
+    /// The neighbour of `(i, j)` at offset `(di, dj)`, if it exists.
+    fn neighbour(&self, i: usize, j: usize, di: isize, dj: isize) -> Option<usize> {
+        let a = i.checked_add_signed(di)?;
+        let b = j.checked_add_signed(dj)?;
+        (a < self.nx && b < self.nz).then(|| self.index(a, b))
+    }
+
+    /// The star of vertex `(i, j)`.
+    #[must_use]
+    pub fn star(&self, i: usize, j: usize) -> Star {
+        let ring = [
+            self.neighbour(i, j, 1, 0),
+            self.neighbour(i, j, 0, 1),
+            self.neighbour(i, j, -1, 0),
+            self.neighbour(i, j, 0, -1),
+        ];
+        let c = self.index(i, j);
+        match ring {
+            [Some(xf), Some(yf), Some(xb), Some(yb)] => Star::Inner([c, xf, yf, xb, yb]),
+            _ => match ring.iter().position(Option::is_none) {
+                Some(missing) if ring.iter().filter(|q| q.is_some()).count() == 3 => {
+                    // Rotate the ring so that the missing neighbour comes last.
+                    let k = (missing + 1) % 4;
+                    let at = |m: usize| ring[(k + m) % 4].unwrap_or(c);
+                    Star::Boundary([c, at(0), at(1), at(2)])
+                }
+                _ => Star::Corner(c),
+            },
+        }
+    }
+
+    /// Every vertex's star, in index order.
+    #[must_use]
+    pub fn stars(&self) -> Vec<Star> {
+        (0..self.len())
+            .map(|k| {
+                let (i, j) = self.coords(k);
+                self.star(i, j)
+            })
+            .collect()
+    }
+
+    /// Every grid edge `[a, b]` with `a < b`: first the edges along X (row by row), then along Z.
+    #[must_use]
+    pub fn edges(&self) -> Vec<[usize; 2]> {
+        let mut out = Vec::with_capacity(self.edge_count());
+        for j in 0..self.nz {
+            for i in 0..self.nx - 1 {
+                out.push([self.index(i, j), self.index(i + 1, j)]);
+            }
+        }
+        for j in 0..self.nz - 1 {
+            for i in 0..self.nx {
+                out.push([self.index(i, j), self.index(i, j + 1)]);
+            }
+        }
+        out
+    }
+
+    /// Number of grid edges.
+    #[must_use]
+    pub fn edge_count(&self) -> usize {
+        (self.nx - 1) * self.nz + self.nx * (self.nz - 1)
+    }
+
+    /// `true` for a vertex on the grid's border.
+    #[must_use]
+    pub fn is_border(&self, i: usize, j: usize) -> bool {
+        i == 0 || j == 0 || i + 1 == self.nx || j + 1 == self.nz
+    }
+
+    /// The vertices one ring in from the border (seed `000_…` Sec. 3.3: grabbing them avoids
+    /// the smoothness artifacts of positional targets on the boundary), in index order.
+    /// Empty when the grid has fewer than three vertices in a direction.
+    #[must_use]
+    pub fn second_ring(&self) -> Vec<usize> {
+        if self.nx < 3 || self.nz < 3 {
+            return Vec::new();
+        }
+        (0..self.len())
+            .filter(|&k| {
+                let (i, j) = self.coords(k);
+                let inside = i >= 1 && j >= 1 && i + 2 <= self.nx && j + 2 <= self.nz;
+                inside && (i == 1 || j == 1 || i + 2 == self.nx || j + 2 == self.nz)
+            })
+            .collect()
+    }
+}

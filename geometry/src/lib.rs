@@ -1,0 +1,24 @@
+//! # folio-geometry
+//!
+//! Geometry of Folio's book (seed `000_…` Sec. 3): `no_std` + `alloc`.
+//!
+//! - [`grid`]: the active page's DOG quad grid, its stars and edges.
+//! - [`layout`]: the book layout from its parameters: page-block midlines, binding edge,
+//!   hard cover, and the rest shape of a page lying on a block.
+//! - [`collision`]: the 2D collision projection of Sec. 3.4.
+//! - [`mesh`]: the triangle mesh for rendering of Sec. 3.5.
+//!
+//! Axes (seed Sec. 3.1): X across the open book, Y up (pages stack along Y, gravity is −Y),
+//! Z along the binding. Lengths in page units (a page is 12 wide by default).
+#![cfg_attr(not(feature = "std"), no_std)]
+
+extern crate alloc;
+
+pub mod collision;
+pub mod grid;
+pub mod layout;
+pub mod mesh;
+
+pub use collision::{Contacts, Floor, Wall};
+pub use grid::{QuadGrid, Star};
+pub use layout::{BlockSide, BookLayout, BookParams, LayoutError};
