@@ -101,6 +101,12 @@ fn numbers<const N: usize>(
     Ok(out)
 }
 
+/// `n` as a whole number in `1..=max`.
+fn whole(n: f64, max: f64) -> Option<u32> {
+    let k = n as u32;
+    ((1.0..=max).contains(&n) && f64::from(k) == n).then_some(k)
+}
+
 impl Script {
     /// Parses `text` (module docs).
     ///
@@ -129,10 +135,8 @@ impl Script {
                 }
                 "frames" => {
                     let [n] = numbers::<1>(&mut words, line)?;
-                    if !(1.0..=1.0e7).contains(&n) || n.fract() != 0.0 {
-                        return Err(err("frames must be a whole number in 1..=10^7"));
-                    }
-                    script.frames = n as u32;
+                    script.frames =
+                        whole(n, 1.0e7).ok_or(err("frames must be a whole number in 1..=10^7"))?;
                     frames = true;
                 }
                 "camera" => {
@@ -160,13 +164,9 @@ impl Script {
                         Some("grab") => {
                             let direction = numbers::<3>(&mut words, line)?;
                             let [pages] = numbers::<1>(&mut words, line)?;
-                            if !(1.0..=1.0e6).contains(&pages) || pages.fract() != 0.0 {
-                                return Err(err("pages must be a whole number >= 1"));
-                            }
-                            Action::Grab {
-                                direction,
-                                pages: pages as u32,
-                            }
+                            let pages = whole(pages, 1.0e6)
+                                .ok_or(err("pages must be a whole number in 1..=10^6"))?;
+                            Action::Grab { direction, pages }
                         }
                         Some("drag") => Action::Drag {
                             direction: numbers::<3>(&mut words, line)?,
