@@ -34,24 +34,10 @@ fn frames(c: &mut Criterion) {
             BatchSize::SmallInput,
         );
     });
-    let two = {
-        let mut s = BookSettings::default();
-        s.solver.newton_iterations = 2;
-        s
-    };
-    let hessian = {
-        let mut s = BookSettings::default();
-        s.solver.constraint_hessian = true;
-        s
-    };
-    for (name, settings) in [
-        ("held page, 1 Newton iteration", BookSettings::default()),
-        ("held page, 2 Newton iterations", two),
-        ("held page, constraint Hessian on", hessian),
-    ] {
+    for (name, settings) in folio_bench::book::variants() {
         // Frame 80: mid-swipe, the page arched over the spine.
         let held = book_at(settings, 80);
-        g.bench_function(name, |b| {
+        g.bench_function(format!("held page, {name}"), |b| {
             b.iter_batched_ref(
                 || held.clone(),
                 |book| black_box(book.step()),

@@ -23,16 +23,6 @@ fn main() {
     let script = Script::parse(PAGE_TURN).expect("fixture");
     let mut rest_script = script.clone();
     rest_script.events.clear();
-    let two = {
-        let mut s = BookSettings::default();
-        s.solver.newton_iterations = 2;
-        s
-    };
-    let hessian = {
-        let mut s = BookSettings::default();
-        s.solver.constraint_hessian = true;
-        s
-    };
     // Warm up caches and the allocator once.
     let _ = play(BookSettings::default(), &script);
     let default = play(BookSettings::default(), &script);
@@ -46,16 +36,13 @@ fn main() {
         &default,
         baseline,
     );
-    row(
-        "page turn, 2 Newton iterations",
-        &play(two, &script),
-        baseline,
-    );
-    row(
-        "page turn, constraint Hessian on",
-        &play(hessian, &script),
-        baseline,
-    );
+    for (name, settings) in folio_bench::book::variants().into_iter().skip(1) {
+        row(
+            &format!("page turn, {name}"),
+            &play(settings, &script),
+            baseline,
+        );
+    }
     row(
         "book at rest, 750 frames",
         &play(BookSettings::default(), &rest_script),

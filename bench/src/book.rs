@@ -62,3 +62,19 @@ pub fn quantile(samples: &[f64], q: f64) -> f64 {
     }
     s[((s.len() - 1) as f64 * q).round() as usize]
 }
+
+/// The accuracy-for-time variants of seed 000 Sec. 5 on the default book: the default
+/// (one Newton iteration, no constraint Hessian), two Newton iterations, the constraint
+/// Hessian on.
+#[must_use]
+pub fn variants() -> [(&'static str, BookSettings<f64>); 3] {
+    let mut two = BookSettings::default();
+    two.solver.newton_iterations = 2;
+    let mut hessian = BookSettings::default();
+    hessian.solver.constraint_hessian = true;
+    [
+        ("1 Newton iteration", BookSettings::default()),
+        ("2 Newton iterations", two),
+        ("constraint Hessian on", hessian),
+    ]
+}
