@@ -63,18 +63,29 @@ pub fn quantile(samples: &[f64], q: f64) -> f64 {
     s[((s.len() - 1) as f64 * q).round() as usize]
 }
 
-/// The accuracy-for-time variants of seed 000 Sec. 5 on the default book: the default
-/// (one Newton iteration, no constraint Hessian), two Newton iterations, the constraint
-/// Hessian on.
+/// The accuracy-for-time variants on the default book: the default (one Newton iteration,
+/// no constraint Hessian, contact springs and the constraint projection on), two Newton
+/// iterations and the constraint Hessian on (seed 000 Sec. 5), the projection off, and the
+/// seed's plain step (projection and contact springs off).
 #[must_use]
-pub fn variants() -> [(&'static str, BookSettings<f64>); 3] {
+pub fn variants() -> [(&'static str, BookSettings<f64>); 5] {
     let mut two = BookSettings::default();
     two.solver.newton_iterations = 2;
     let mut hessian = BookSettings::default();
     hessian.solver.constraint_hessian = true;
+    let plain = BookSettings {
+        max_corrections: 0,
+        ..BookSettings::default()
+    };
+    let seed = BookSettings {
+        contact_stiffness: 0.0,
+        ..plain
+    };
     [
         ("1 Newton iteration", BookSettings::default()),
         ("2 Newton iterations", two),
         ("constraint Hessian on", hessian),
+        ("no projection", plain),
+        ("no projection, no contact springs (seed)", seed),
     ]
 }

@@ -9,6 +9,7 @@
 //! reads from the initial configuration; it stays defined when a point is exactly on a
 //! segment or has passed through it.
 
+use folio_kernels::contact::ContactPlane;
 use folio_kernels::{Real, Vec3Ops, math};
 
 /// A segment in the XY plane with the unit normal of its allowed side and a clearance.
@@ -74,13 +75,33 @@ impl<T: Real> Wall<T> {
         let depth = self.clearance - rel.dot(self.normal);
         (depth > T::ZERO).then_some(depth)
     }
+}
 
-    /// Moves `p` out of the clearance band along the normal; returns the depth it had.
+/// Something a point may not enter: it pushes the point out and, for the steps after, offers
+/// the plane that holds it there (a [`ContactPlane`] spring).
+pub trait Obstacle<T: Real> {
+    /// Moves `p` out; returns the depth it had (`None` when it was clear).
+    fn resolve(&self, p: &mut T::Vec3) -> Option<T>;
+    /// The supporting plane (constant along Z) at the clearance, with spring stiffness
+    /// `stiffness`.
+    fn contact_plane(&self, stiffness: T) -> ContactPlane<T>;
+}
+
+impl<T: Real> Obstacle<T> for Wall<T> {
+    /// Along the normal, out of the clearance band.
     #[inline]
-    pub fn resolve(&self, p: &mut T::Vec3) -> Option<T> {
+    fn resolve(&self, p: &mut T::Vec3) -> Option<T> {
         let depth = self.penetration(*p)?;
         *p += self.normal * depth;
         Some(depth)
+    }
+    fn contact_plane(&self, stiffness: T) -> ContactPlane<T> {
+        ContactPlane {
+            point: self.a,
+            normal: self.normal,
+            clearance: self.clearance,
+            stiffness,
+        }
     }
 }
 
@@ -91,15 +112,23 @@ pub struct Floor<T> {
     pub level: T,
 }
 
-impl<T: Real> Floor<T> {
-    /// Lifts `p` to the floor; returns the depth it had.
+impl<T: Real> Obstacle<T> for Floor<T> {
+    /// Straight up to the floor.
     #[inline]
-    pub fn resolve(&self, p: &mut T::Vec3) -> Option<T> {
+    fn resolve(&self, p: &mut T::Vec3) -> Option<T> {
         let depth = self.level - p.y();
         (depth > T::ZERO).then(|| {
             *p = T::Vec3::new(p.x(), self.level, p.z());
             depth
         })
+    }
+    fn contact_plane(&self, stiffness: T) -> ContactPlane<T> {
+        ContactPlane {
+            point: T::Vec3::new(T::ZERO, self.level, T::ZERO),
+            normal: T::Vec3::new(T::ZERO, T::ONE, T::ZERO),
+            clearance: T::ZERO,
+            stiffness,
+        }
     }
 }
 

@@ -19,6 +19,6 @@ pub mod grid;
 pub mod layout;
 pub mod mesh;
 
-pub use collision::{Contacts, Floor, Wall};
+pub use collision::{Contacts, Floor, Obstacle, Wall};
 pub use grid::{QuadGrid, Star};
 pub use layout::{BlockSide, BookLayout, BookParams, LayoutError};

@@ -23,6 +23,7 @@
 
 pub mod binding;
 pub mod cone;
+pub mod contact;
 pub mod curve_laplacian;
 pub mod dog;
 pub mod dog_laplacian;

@@ -83,6 +83,11 @@ impl<T, P, const N: usize> PotentialSet<T, P, N> {
         &self.terms
     }
 
+    /// The kernel of term `t`, if there is one (values change, the pattern does not).
+    pub fn kernel_mut(&mut self, t: usize) -> Option<&mut P> {
+        self.terms.get_mut(t).map(|t| &mut t.kernel)
+    }
+
     /// The kernels, mutable (parameters such as a positional target may change every step;
     /// the stencils may not).
     pub fn kernels_mut(&mut self) -> impl Iterator<Item = &mut P> {

@@ -48,6 +48,9 @@ pub struct StepReport<T> {
     pub merit_after: Option<T>,
     /// Step halvings over all line searches of the step.
     pub halvings: u32,
+    /// Damped re-solves after failed line searches (see
+    /// [`crate::Settings::damping_retries`]) in the last iteration.
+    pub damping_retries: u32,
     /// Pivots replaced by the sign-aware regularization, summed over the step's
     /// factorizations. Nonzero with the default ordering means a (numerically) singular KKT:
     /// redundant or conflicting constraints.

@@ -24,6 +24,11 @@ pub struct Settings<T> {
     pub line_search: bool,
     /// Most step halvings in the line search, at most 60. Default 20.
     pub max_halvings: u32,
+    /// When the line search fails, the iteration is solved again with the inertia block
+    /// scaled by $1 + \gamma$, $\gamma = 1, 10, 100, \dots$ (a proximal damping that
+    /// shortens the step and improves the conditioning), at most this many times, at most 10.
+    /// Default 4.
+    pub damping_retries: u32,
     /// Elimination order of the symbolic analysis. Default: [`Ordering::Amd`] in `f64`,
     /// [`Ordering::AmdDelayedDuals`] in `f32` (see [`Ordering`] for the measurements).
     pub ordering: Ordering,
@@ -56,6 +61,7 @@ impl<T: Real> Default for Settings<T> {
             tolerance: sqrt_eps,
             line_search: true,
             max_halvings: 20,
+            damping_retries: 4,
             ordering: if T::EPSILON.to_f64() < 1e-10 {
                 Ordering::Amd
             } else {
@@ -88,6 +94,9 @@ impl<T: Real> Settings<T> {
         }
         if self.max_halvings > 60 {
             return bad("max_halvings", "at most 60");
+        }
+        if self.damping_retries > 10 {
+            return bad("damping_retries", "at most 10");
         }
         if !(self.pivot_epsilon.is_finite() && self.pivot_epsilon >= T::ZERO) {
             return bad("pivot_epsilon", "finite and >= 0");

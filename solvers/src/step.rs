@@ -223,6 +223,7 @@ impl<T: Real> Solver<T> {
             merit_before: None,
             merit_after: None,
             halvings: 0,
+            damping_retries: 0,
             regularized_pivots: 0,
             hessian_shift: T::ZERO,
             refinement_steps: 0,
@@ -253,54 +254,78 @@ impl<T: Real> Solver<T> {
                 converged = true;
                 break;
             }
-            let (outcome, shift) = w
-                .kkt
-                .factorize_with_inertia_correction(s.pivot_epsilon, s.regularization);
-            if shift > report.hessian_shift {
-                report.hessian_shift = shift;
-            }
-            w.factored = matches!(outcome, FactorOutcome::Factored { .. });
-            match outcome {
-                FactorOutcome::Factored { regularized, .. } => {
-                    report.regularized_pivots += regularized;
+            // A direction the line search refuses is retried with the inertia scaled up,
+            // M/h^2 -> (1 + gamma) M/h^2 with gamma = 1, 10, 100, ... (a proximal damping:
+            // shorter, better conditioned steps), up to `damping_retries` times.
+            let mut gamma = T::ZERO;
+            let mut retry = 0;
+            let dofs = w.kkt.pattern.dofs;
+            loop {
+                let (outcome, shift) = w
+                    .kkt
+                    .factorize_with_inertia_correction(s.pivot_epsilon, s.regularization);
+                if shift > report.hessian_shift {
+                    report.hessian_shift = shift;
                 }
-                FactorOutcome::NonFinite { .. } => {
+                w.factored = matches!(outcome, FactorOutcome::Factored { .. });
+                match outcome {
+                    FactorOutcome::Factored { regularized, .. } => {
+                        report.regularized_pivots += regularized;
+                    }
+                    FactorOutcome::NonFinite { .. } => {
+                        report.status = StepStatus::NumericalFailure;
+                        return Ok(report);
+                    }
+                }
+                let refinement = w.kkt.solve_refined(
+                    &mut w.solution,
+                    &w.rhs,
+                    s.refinement_steps,
+                    s.refinement_tolerance,
+                );
+                report.iterations += 1;
+                report.refinement_steps += refinement.steps;
+                if !(refinement.relative_residual.is_finite() && max_abs(&w.solution).is_finite()) {
                     report.status = StepStatus::NumericalFailure;
                     return Ok(report);
                 }
-            }
-            let refinement = w.kkt.solve_refined(
-                &mut w.solution,
-                &w.rhs,
-                s.refinement_steps,
-                s.refinement_tolerance,
-            );
-            report.iterations += 1;
-            report.refinement_steps += refinement.steps;
-            if !(refinement.relative_residual.is_finite() && max_abs(&w.solution).is_finite()) {
-                report.status = StepStatus::NumericalFailure;
-                return Ok(report);
-            }
-            if refinement.relative_residual > report.linear_residual {
-                report.linear_residual = refinement.relative_residual;
-            }
-            let dofs = w.kkt.pattern.dofs;
-            if s.line_search {
+                if refinement.relative_residual > report.linear_residual {
+                    report.linear_residual = refinement.relative_residual;
+                }
+                if !s.line_search {
+                    w.set_trial(T::ONE);
+                    report.constraint_residual = None;
+                    break;
+                }
                 let search = w.line_search(model, h, e.energy, s.max_halvings)?;
                 report.merit_before = Some(search.before);
                 report.merit_after = search.after;
                 report.halvings += search.halvings;
-                if search.after.is_none() {
+                if search.after.is_some() {
+                    report.constraint_residual = Some(max_abs(&w.constraint));
+                    break;
+                }
+                if retry == s.damping_retries {
                     report.status = StepStatus::LineSearchFailed;
                     return Ok(report);
                 }
-                report.constraint_residual = Some(max_abs(&w.constraint));
-                core::mem::swap(&mut w.x, &mut w.trial);
-            } else {
-                w.set_trial(T::ONE);
-                core::mem::swap(&mut w.x, &mut w.trial);
-                report.constraint_residual = None;
+                retry += 1;
+                report.damping_retries = retry;
+                // The evaluation at the iterate is still in the values (the factor is
+                // separate); only the diagonal changes.
+                let next = if gamma == T::ZERO {
+                    T::ONE
+                } else {
+                    gamma * T::from_f64(10.0)
+                };
+                let inv_h2 = T::ONE / (h * h);
+                for d in 0..dofs {
+                    let slot = w.kkt.pattern.diagonal_slot(d);
+                    w.kkt.values[slot] += (next - gamma) * w.mass[d] * inv_h2;
+                }
+                gamma = next;
             }
+            core::mem::swap(&mut w.x, &mut w.trial);
             let (_, lambda) = w.solution.split_at(dofs);
             w.lambda.copy_from_slice(lambda);
             report.residual = None;
@@ -327,36 +352,42 @@ impl<T: Real> Solver<T> {
     }
 }
 
-/// What [`Solver::correct_constraints`] did.
+/// What [`Solver::project_constraints`] did.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Correction<T> {
-    /// Corrections applied.
+    /// Projection iterations accepted.
     pub steps: u32,
-    /// $\lVert C(x)\rVert_\infty$ before the first correction.
+    /// $\lVert C(x)\rVert_\infty$ before the first iteration.
     pub before: T,
-    /// $\lVert C(x)\rVert_\infty$ after the last one.
+    /// $\lVert C(x)\rVert_\infty$ after the last accepted one.
     pub after: T,
 }
 
 impl<T: Real> Solver<T> {
     /// Pulls `state` back onto the constraints after a step and anything done to it since
-    /// (collision projection): chord iterations with the last step's factorization,
-    /// $$\begin{bmatrix} A & J^\top \\ J & 0\end{bmatrix}\begin{bmatrix}\delta \\ \mu\end{bmatrix}
+    /// (collision projection): the mass-weighted closest point on $C(x) = 0$, found by
+    /// Gauss-Newton iterations with the Jacobian re-evaluated at each iterate,
+    /// $$\begin{bmatrix} W & J(x)^\top \\ J(x) & 0\end{bmatrix}\begin{bmatrix}\delta \\ \mu\end{bmatrix}
     ///   = \begin{bmatrix} 0 \\ -C(x)\end{bmatrix},\qquad x \mathrel{+}= \delta,\ v \mathrel{+}= \delta / h,$$
-    /// the $A$-weighted smallest move that cancels $C$ to first order, until
-    /// $\lVert C\rVert_\infty \le$ `tolerance` or `max_steps` corrections. Each costs a
-    /// constraint evaluation and a triangular solve, no factorization and no allocation. The
-    /// one-Newton-step default leaves $C = O(\lVert\Delta x\rVert^2)$ behind; this removes it.
-    /// A correction that does not lower $\lVert C\rVert_\infty$ is refused and ends the
-    /// iteration (the state keeps the last accepted point). Does nothing (zero steps) before
-    /// the first successful step of the topology.
+    /// with $W = M/h^2$ except on the nodes flagged in `pinned`, whose weight is multiplied by
+    /// `pin_weight` so that they barely move (contact points stay on the surface that pushed
+    /// them). This is the fast projection of Goldenthal et al. 2007; each iteration costs one
+    /// numeric factorization of the analysed pattern and no allocation. The one-Newton-step
+    /// default leaves $C = O(\lVert\Delta x\rVert^2)$ behind, and a collision push of depth
+    /// $d$ leaves $C = O(d/\ell)$ (module docs); this removes both. Iterates until
+    /// $\lVert C\rVert_\infty \le$ `tolerance` or `max_steps` iterations; an iteration that
+    /// does not lower $\lVert C\rVert_\infty$ is refused and ends the projection. Does
+    /// nothing (zero steps) before the first successful step of the topology.
     ///
     /// # Errors
-    /// As [`Solver::step`] for a model that changed or a state of the wrong length.
-    pub fn correct_constraints<M: Model<T>>(
+    /// As [`Solver::step`] for a model that changed or a state of the wrong length;
+    /// [`SolverError::StateLength`] also when `pinned` is not one flag per node.
+    pub fn project_constraints<M: Model<T>>(
         &mut self,
         model: &M,
         state: &mut State<T>,
+        pinned: &[bool],
+        pin_weight: T,
         tolerance: T,
         max_steps: u32,
     ) -> Result<Correction<T>, SolverError> {
@@ -365,42 +396,64 @@ impl<T: Real> Solver<T> {
             before: T::ZERO,
             after: T::ZERO,
         };
-        let h = self.settings.time_step;
+        let s = self.settings;
+        let h = s.time_step;
         let Some(w) = self.work.as_mut() else {
             return Ok(out);
         };
         if w.version != model.topology_version() {
             return Err(SolverError::ModelChanged);
         }
-        if state.x.len() != w.x.len() || state.v.len() != w.x.len() {
+        let nodes = w.x.len();
+        if state.x.len() != nodes || state.v.len() != nodes || pinned.len() != nodes {
             return Err(SolverError::StateLength {
-                expected: w.x.len(),
+                expected: nodes,
                 positions: state.x.len(),
-                velocities: state.v.len(),
+                velocities: state.v.len().min(pinned.len()),
             });
         }
         if !w.factored {
             return Ok(out);
         }
         w.x.copy_from_slice(&state.x);
-        let dofs = w.kkt.pattern.dofs;
         let e = w.evaluate(model, h, false, Derivatives::None)?;
         let mut residual = max_abs(&w.constraint);
         if !(e.finite && residual.is_finite()) {
             return Ok(out);
         }
         out.before = residual;
+        let dofs = w.kkt.pattern.dofs;
+        let extra = (pin_weight - T::ONE) / (h * h);
         while out.steps < max_steps && residual > tolerance {
+            // J(x) and the M/h^2 diagonal; the Hessian blocks stay zero.
+            let e = w.evaluate(model, h, false, Derivatives::First)?;
+            if !e.finite {
+                break;
+            }
+            for (d, &c) in w.kkt.pattern.coordinate_of.iter().enumerate() {
+                if pinned[c as usize / 3] {
+                    w.kkt.values[w.kkt.pattern.diagonal_slot(d)] += w.mass[d] * extra;
+                }
+            }
+            let (outcome, _) = w
+                .kkt
+                .factorize_with_inertia_correction(s.pivot_epsilon, s.regularization);
+            if !matches!(outcome, FactorOutcome::Factored { .. }) {
+                break;
+            }
             w.rhs[..dofs].iter_mut().for_each(|r| *r = T::ZERO);
             for (r, &c) in w.rhs[dofs..].iter_mut().zip(&w.constraint) {
                 *r = -c;
             }
-            w.kkt.solve_refined(&mut w.solution, &w.rhs, 0, T::ZERO);
+            w.kkt.solve_refined(
+                &mut w.solution,
+                &w.rhs,
+                s.refinement_steps,
+                s.refinement_tolerance,
+            );
             w.set_trial(T::ONE);
             let e = w.evaluate(model, h, true, Derivatives::None)?;
             let next = max_abs(&w.constraint);
-            // A chord step that does not reduce the residual is refused: near a flat DOG
-            // star the factored Jacobian is nearly singular and the step can be huge.
             if !(e.finite && next < residual) {
                 break;
             }

@@ -2,6 +2,7 @@
 
 use folio_kernels::KernelError;
 use folio_kernels::binding::Binding;
+use folio_kernels::contact::ContactPlane;
 use folio_kernels::fix::Fix;
 use folio_kernels::gravity::Gravity;
 use folio_kernels::iso2d::Iso2d;
@@ -81,6 +82,23 @@ fn bad_parameters_are_typed_errors() {
     assert_eq!(
         Positional::<f64>::new(DVec3::splat(f64::MAX)).map(|p| p.target),
         Ok(DVec3::splat(f64::MAX))
+    );
+    assert_eq!(
+        ContactPlane::<f64>::new(DVec3::ZERO, DVec3::ZERO, 0.0, 1.0).unwrap_err(),
+        KernelError::OutOfRange { name: "normal" }
+    );
+    assert_eq!(
+        ContactPlane::<f64>::new(DVec3::ZERO, DVec3::Y, f64::NAN, 1.0).unwrap_err(),
+        KernelError::NonFiniteParameter { name: "clearance" }
+    );
+    assert_eq!(
+        ContactPlane::<f64>::new(DVec3::ZERO, DVec3::new(0.0, 3.0, 4.0), 0.1, 1.0)
+            .map(|p| p.normal),
+        Ok(DVec3::new(0.0, 0.6, 0.8))
+    );
+    assert_eq!(
+        ContactPlane::<f64>::new(DVec3::ZERO, DVec3::Y, 0.1, -1.0).unwrap_err(),
+        KernelError::OutOfRange { name: "stiffness" }
     );
     // Messages name the problem.
     assert_eq!(

@@ -4,6 +4,7 @@
 
 use folio_kernels::binding::Binding;
 use folio_kernels::cone::ConeCurl;
+use folio_kernels::contact::ContactPlane;
 use folio_kernels::dog::{DogBoundaryStar, DogInnerStar};
 use folio_kernels::fix::Fix;
 use folio_kernels::glue::Glue;
@@ -188,6 +189,20 @@ fn iso3d() {
 fn positional() {
     potentials("positional", 12, |r| {
         (Positional::new(r.vec(3.0)).unwrap(), [r.vec(3.0)])
+    });
+}
+
+#[test]
+fn contact_plane() {
+    potentials("contact plane", 14, |r| {
+        let plane = ContactPlane::new(
+            r.vec(3.0),
+            r.vec(1.0),
+            r.uniform(0.0, 0.1),
+            r.uniform(0.5, 2.0),
+        )
+        .unwrap();
+        (plane, [r.vec(3.0)])
     });
 }
 

@@ -225,3 +225,68 @@ fn wrong_state_length_is_an_error() {
         })
     ));
 }
+
+/// Largest link-length error of the chain.
+fn link_error(x: &[glam::DVec3]) -> f64 {
+    x.windows(2)
+        .map(|w| ((w[1] - w[0]).length() - LENGTH).abs())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn projection_restores_the_constraints_and_keeps_pinned_nodes() {
+    let chain = Chain::<f64>::new(LINKS, LENGTH, MASS);
+    let mut solver = Solver::new(Settings::default()).unwrap();
+    // The catenary (curved, so a small push of one node stays feasible).
+    let catenary = hanging_chain(LINKS, LENGTH, MASS, 2.0);
+    let mut state = State::at_rest(
+        catenary
+            .iter()
+            .map(|p| glam::DVec3::new(p[0], p[1], 0.0))
+            .collect(),
+    );
+    let pinned: Vec<bool> = (0..=LINKS).map(|k| k == 4).collect();
+    // Nothing to project with before the first step.
+    let none = solver
+        .project_constraints(&chain, &mut state, &pinned, 1e4, 1e-12, 5)
+        .unwrap();
+    assert_eq!(none.steps, 0);
+    solver.step(&chain, &mut state).unwrap();
+    // A collision-like push of node 4 stretches its two links by a few percent.
+    let push = glam::DVec3::new(0.01, -0.015, 0.0);
+    state.x[4] += push;
+    let pushed_to = state.x[4];
+    let before = link_error(&state.x);
+    let v_before = state.v.clone();
+    let mut free = state.clone();
+    solver
+        .clone()
+        .project_constraints(&chain, &mut free, &pinned, 1.0, 1e-11, 8)
+        .unwrap();
+    let c = solver
+        .project_constraints(&chain, &mut state, &pinned, 1e4, 1e-11, 8)
+        .unwrap();
+    let after = link_error(&state.x);
+    println!("projection: {c:?}, link error {before:.2e} -> {after:.2e}");
+    assert!(before > 1e-3, "the push must stretch the chain ({before})");
+    // Gauss-Newton with a fresh Jacobian: 1e-2 to 1e-11 in a handful of iterations.
+    assert!(after <= 1e-11, "link error after projection {after:.3e}");
+    assert!(c.steps <= 6, "{c:?}");
+    // Pinned (weight 1e4), the node moves two orders of magnitude less than unpinned.
+    let pinned_moved = (state.x[4] - pushed_to).length();
+    let free_moved = (free.x[4] - pushed_to).length();
+    println!("node 4 moved {pinned_moved:.2e} pinned, {free_moved:.2e} free");
+    assert!(
+        pinned_moved < 1e-2 * free_moved,
+        "pinned node moved {pinned_moved:.2e}, free {free_moved:.2e}"
+    );
+    // The velocities see the move over the step.
+    let h = Settings::<f64>::default().time_step;
+    assert!((state.v[3] - v_before[3]).length() > 0.0);
+    assert!(((state.v[4] - v_before[4]) * h - (state.x[4] - pushed_to)).length() < 1e-12);
+    // A flag per node is required.
+    assert!(matches!(
+        solver.project_constraints(&chain, &mut state, &pinned[1..], 1e4, 1e-12, 5),
+        Err(SolverError::StateLength { .. })
+    ));
+}

@@ -10,6 +10,7 @@
 use alloc::vec::Vec;
 use folio_geometry::{BookLayout, QuadGrid, Star};
 use folio_kernels::binding::Binding;
+use folio_kernels::contact::ContactPlane;
 use folio_kernels::curve_laplacian::{self, CurveLaplacian};
 use folio_kernels::dog_laplacian::{self, DogLaplacianBoundary, DogLaplacianInner};
 use folio_kernels::fix::Fix;
@@ -21,7 +22,7 @@ use folio_kernels::positional::Positional;
 use folio_kernels::{KernelError, Real, Vec3Ops};
 
 use super::settings::BookSettings;
-use super::terms::{DogBoundary, DogInner, PlanarFix, Pull};
+use super::terms::{Contact, DogBoundary, DogInner, PlanarFix, Pull};
 use crate::model::{ConstraintSet, Model, PotentialSet, TermVisitor};
 
 /// Where each kind of node lives in the state (module docs).
@@ -99,6 +100,10 @@ pub struct BookTerms<T: Real> {
     page_gravity: PotentialSet<T, Gravity<T>, 1>,
     pull: PotentialSet<T, Pull<T>, 1>,
     pull_nodes: Vec<usize>,
+    /// One per block and cover node, in node order.
+    block_contacts: PotentialSet<T, Contact<T>, 1>,
+    /// One per page node, in grid order.
+    page_contacts: PotentialSet<T, Contact<T>, 1>,
 }
 
 fn as_u32<const N: usize>(nodes: [usize; N]) -> [u32; N] {
@@ -142,6 +147,8 @@ impl<T: Real> BookTerms<T> {
             page_gravity: PotentialSet::new(T::ONE),
             pull: PotentialSet::new(w.pull),
             pull_nodes: Vec::new(),
+            block_contacts: PotentialSet::new(T::ONE),
+            page_contacts: PotentialSet::new(T::ONE),
         };
         // Blocks: inextensible midlines (eq. 6), curve bending at inner nodes (eq. 10; the
         // binding nodes are left to the glue), gravity (eq. 12).
@@ -222,13 +229,36 @@ impl<T: Real> BookTerms<T> {
         }
         for k in grid.second_ring() {
             let pull = Pull {
-                positional: Positional::new(T::Vec3::ZERO)?,
+                kernel: Positional::new(T::Vec3::ZERO)?,
                 active: false,
             };
             t.pull.push(pull, as_u32([po + k]));
             t.pull_nodes.push(po + k);
         }
+        let off = Contact {
+            kernel: ContactPlane::new(
+                T::Vec3::ZERO,
+                T::Vec3::new(T::ZERO, T::ONE, T::ZERO),
+                T::ZERO,
+                T::ZERO,
+            )?,
+            active: false,
+        };
+        for node in 0..t.nodes.total() {
+            let set = if node < po {
+                &mut t.block_contacts
+            } else {
+                &mut t.page_contacts
+            };
+            set.push(off, as_u32([node]));
+        }
         Ok(t)
+    }
+
+    /// The mass of `node` (page masses).
+    #[must_use]
+    pub fn mass(&self, node: usize) -> T {
+        self.masses[node]
     }
 
     /// Sets the mass of `node` and its gravity term.
@@ -283,10 +313,32 @@ impl<T: Real> BookTerms<T> {
             match held {
                 Some((h, target)) if h == node => {
                     kernel.active = true;
-                    kernel.positional.target = target;
+                    kernel.kernel.target = target;
                 }
                 _ => kernel.active = false,
             }
+        }
+    }
+
+    /// Switches every contact spring off.
+    pub fn clear_contacts(&mut self) {
+        let sets = [&mut self.block_contacts, &mut self.page_contacts];
+        for kernel in sets.into_iter().flat_map(PotentialSet::kernels_mut) {
+            kernel.active = false;
+        }
+    }
+
+    /// Holds `node` against `plane` in the next steps, until [`BookTerms::clear_contacts`].
+    pub fn set_contact(&mut self, node: usize, plane: ContactPlane<T>) {
+        let po = self.nodes.page_offset();
+        let kernel = if node < po {
+            self.block_contacts.kernel_mut(node)
+        } else {
+            self.page_contacts.kernel_mut(node - po)
+        };
+        if let Some(kernel) = kernel {
+            kernel.kernel = plane;
+            kernel.active = true;
         }
     }
 
@@ -297,7 +349,7 @@ impl<T: Real> BookTerms<T> {
             .terms()
             .iter()
             .find(|t| t.nodes[0] as usize == node && t.kernel.active)
-            .map(|t| t.kernel.positional.target)
+            .map(|t| t.kernel.kernel.target)
     }
 
     /// Largest $\lvert C_{\mathrm{DOG}}\rvert$ over the page's stars at `x`.
@@ -372,6 +424,7 @@ impl<T: Real> Model<T> for ActiveView<'_, T> {
         v.potentials(&t.iso3d);
         v.potentials(&t.page_gravity);
         v.potentials(&t.pull);
+        v.potentials(&t.page_contacts);
         v.constraints(&t.dog_inner);
         v.constraints(&t.dog_boundary);
         v.constraints(&t.binding);
@@ -382,6 +435,7 @@ fn visit_blocks<T: Real, V: TermVisitor<T>>(t: &BookTerms<T>, v: &mut V) {
     v.potentials(&t.bend_blocks);
     v.potentials(&t.glue);
     v.potentials(&t.block_gravity);
+    v.potentials(&t.block_contacts);
     v.constraints(&t.iso2d);
     v.constraints(&t.fix);
 }

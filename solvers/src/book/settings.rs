@@ -69,12 +69,28 @@ pub struct BookSettings<T: Real> {
     pub merge_speed: T,
     /// See `merge_speed`.
     pub merge_frames: u32,
-    /// After the step and the collision handling, chord corrections
-    /// ([`crate::Solver::correct_constraints`]) run until $\lVert C\rVert_\infty$ is at most
-    /// this (dimensionless for the DOG rows, page units for the others)...
+    /// After the step and the collision handling, the constraint projection
+    /// ([`crate::Solver::project_constraints`]) iterates until $\lVert C\rVert_\infty$ is at
+    /// most this (dimensionless for the DOG rows, page units for the others)...
     pub constraint_tolerance: T,
-    /// ...or this many corrections ran (0 switches them off: the seed's plain step).
+    /// ...or this many iterations ran (0 switches it off: the seed's plain step, which
+    /// leaves DOG residuals of a few 1e-2 while the page moves fast).
     pub max_corrections: u32,
+    /// Contact spring stiffness per unit of node mass ($s^{-2}$): a node pushed out of a
+    /// block, the cover or the table in one step is held on that surface by a
+    /// [`folio_kernels::contact::ContactPlane`] spring of stiffness $k = s\,m$ in the next, so
+    /// that the step carries the contact force instead of re-penetrating by $F h^2 / m$
+    /// every frame (a resting node then sinks by $g / s$). 0 switches the springs off.
+    /// The springs hold for one step whatever the direction, so a node that should lift off
+    /// by less than the rounding noise of its coordinates ($\approx \varepsilon W$, $W$ the
+    /// page width) stays: the spring's adhesion $k\,\varepsilon W$ must be small next to the
+    /// node's weight $m g$, i.e. $s \ll g / (\varepsilon W)$. Default $10^6$ in `f64`
+    /// (adhesion $\approx 10^{-9}\,m g$) and $4 \cdot 10^4$ in `f32` ($\approx 0.006\,m g$;
+    /// at $10^6$ the f32 page sticks to its block and the page turn fails).
+    pub contact_stiffness: T,
+    /// Weight multiplier of the nodes a collision pushed in this step during the projection
+    /// (they stay on the surface that pushed them).
+    pub contact_pin_weight: T,
     /// Collision detect/resolve rounds per step (the seed's "at most three times").
     pub collision_rounds: u32,
     /// Steps at construction to settle the blocks into their rest shape (the book stops
@@ -110,7 +126,13 @@ impl<T: Real> Default for BookSettings<T> {
             merge_speed: T::from_f64(0.5),
             merge_frames: 10,
             constraint_tolerance: T::from_f64(1e-4),
-            max_corrections: 0,
+            max_corrections: 3,
+            contact_pin_weight: T::from_f64(1e4),
+            contact_stiffness: T::from_f64(if T::EPSILON.to_f64() < 1e-10 {
+                1e6
+            } else {
+                4e4
+            }),
             collision_rounds: 3,
             settle_steps: 20_000,
             settle_tolerance: T::from_f64(if T::EPSILON.to_f64() < 1e-10 {

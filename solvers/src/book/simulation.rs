@@ -5,7 +5,7 @@
 
 use alloc::vec::Vec;
 use folio_geometry::layout::{offset_curve, resample};
-use folio_geometry::{BlockSide, BookLayout, Contacts, Floor, QuadGrid, Wall};
+use folio_geometry::{BlockSide, BookLayout, Contacts, Floor, Obstacle, QuadGrid, Wall};
 use folio_kernels::{Real, Vec3Ops, math};
 
 use super::bookmark::{Flip, History};
@@ -136,6 +136,8 @@ pub struct Book<T: Real> {
     settle_steps: u32,
     history: History<T>,
     flips: Vec<Flip<T>>,
+    /// Nodes a collision pushed in the current step (pinned by the projection).
+    pushed: Vec<bool>,
 }
 
 /// How a finger-bookmarking request ended. Only `Started` changes the book.
@@ -202,6 +204,7 @@ impl<T: Real> BookSettings<T> {
             ("weights.pull", w.pull),
             ("gravity", self.gravity),
             ("air_drag", self.air_drag),
+            ("contact_stiffness", self.contact_stiffness),
         ] {
             check(non_negative(v), field, "finite and >= 0")?;
         }
@@ -211,6 +214,7 @@ impl<T: Real> BookSettings<T> {
             ("min_block_mass", self.min_block_mass),
             ("merge_speed", self.merge_speed),
             ("settle_tolerance", self.settle_tolerance),
+            ("constraint_tolerance", self.constraint_tolerance),
         ] {
             check(positive(v), field, "finite and > 0")?;
         }
@@ -218,6 +222,11 @@ impl<T: Real> BookSettings<T> {
             positive(self.tent_height) && self.tent_height <= T::ONE,
             "tent_height",
             "in (0, 1]",
+        )?;
+        check(
+            self.contact_pin_weight.is_finite() && self.contact_pin_weight >= T::ONE,
+            "contact_pin_weight",
+            "finite and >= 1",
         )?;
         check(
             (1..=16).contains(&self.collision_rounds),
@@ -271,6 +280,7 @@ impl<T: Real> Book<T> {
             right: p.total_pages - p.left_pages,
             active: 0,
         };
+        let pushed = alloc::vec![false; n.total()];
         let mut book = Self {
             rest_solver: Solver::new(settings.solver)?,
             active_solver: Solver::new(settings.solver)?,
@@ -288,6 +298,7 @@ impl<T: Real> Book<T> {
                 settings.history_interval,
             ),
             flips: Vec::with_capacity(settings.max_flips),
+            pushed,
         };
         book.place_page(BlockSide::Right, 1);
         book.update_masses();
@@ -445,6 +456,7 @@ impl<T: Real> Book<T> {
     /// binding parameter, rows at equal steps along Z. The shape is a generalized cylinder
     /// with rulings along Z, an exact DOG.
     fn place_page(&mut self, side: BlockSide, k: u32) {
+        self.terms.clear_contacts();
         let n = self.terms.nodes;
         let p = self.layout.params;
         let half = T::from_f64(0.5 * f64::from(k) * p.page_thickness);
@@ -671,28 +683,27 @@ impl<T: Real> Book<T> {
         let mut rounds = 0;
         let mut correction = Correction::default();
         if report.status.advanced() {
+            self.pushed.iter_mut().for_each(|p| *p = false);
+            self.terms.clear_contacts();
             rounds = self.collide(&mut contacts, self.settings.collision_rounds);
-            let (tol, max) = (
-                self.settings.constraint_tolerance,
-                self.settings.max_corrections,
-            );
-            correction = if self.active.is_some() {
-                self.active_solver.correct_constraints(
-                    &ActiveView(&self.terms),
-                    &mut self.state,
-                    tol,
-                    max,
-                )?
-            } else {
-                self.rest_solver.correct_constraints(
-                    &RestView(&self.terms),
-                    &mut self.state,
-                    tol,
-                    max,
-                )?
-            };
-            if correction.steps > 0 {
-                rounds += self.collide(&mut contacts, 1);
+            // Projection and collision alternate: a node the projection moves into a block
+            // is pushed out and pinned in the next projection, up to `collision_rounds`
+            // passes, so the step ends with both the constraints and the contacts met.
+            for pass in 0..self.settings.collision_rounds {
+                let c = self.project()?;
+                if pass == 0 {
+                    correction.before = c.before;
+                }
+                correction.steps += c.steps;
+                correction.after = c.after;
+                if c.steps == 0 {
+                    break;
+                }
+                let found = self.collide(&mut contacts, 1);
+                rounds += found;
+                if found == 0 {
+                    break;
+                }
             }
         }
         let po = self.terms.nodes.page_offset();
@@ -717,6 +728,37 @@ impl<T: Real> Book<T> {
         })
     }
 
+    /// One [`Solver::project_constraints`] of the current view, the nodes pushed in this
+    /// step pinned.
+    fn project(&mut self) -> Result<Correction<T>, BookError> {
+        let s = &self.settings;
+        let (pin, tol, max) = (
+            s.contact_pin_weight,
+            s.constraint_tolerance,
+            s.max_corrections,
+        );
+        let c = if self.active.is_some() {
+            self.active_solver.project_constraints(
+                &ActiveView(&self.terms),
+                &mut self.state,
+                &self.pushed,
+                pin,
+                tol,
+                max,
+            )?
+        } else {
+            self.rest_solver.project_constraints(
+                &RestView(&self.terms),
+                &mut self.state,
+                &self.pushed,
+                pin,
+                tol,
+                max,
+            )?
+        };
+        Ok(c)
+    }
+
     /// Up to `max_rounds` detect/resolve rounds, stopping at the first that finds nothing;
     /// returns the rounds that found contacts.
     fn collide(&mut self, total: &mut Contacts<T>, max_rounds: u32) -> u32 {
@@ -735,11 +777,15 @@ impl<T: Real> Book<T> {
         rounds
     }
 
-    /// Moves `node` with `resolve`, adding the displacement over the time step to its
-    /// velocity (an inelastic contact).
-    fn push_node(&mut self, node: usize, resolve: impl Fn(&mut T::Vec3) -> Option<T>) -> Option<T> {
+    /// Pushes `node` out of `obstacle`, adding the displacement over the time step to its
+    /// velocity (an inelastic contact); the node is pinned in this step's projection and
+    /// held on the obstacle's plane by a contact spring in the next step.
+    fn push_node(&mut self, node: usize, obstacle: &impl Obstacle<T>) -> Option<T> {
         let before = self.state.x[node];
-        let depth = resolve(&mut self.state.x[node])?;
+        let depth = obstacle.resolve(&mut self.state.x[node])?;
+        self.pushed[node] = true;
+        let k = self.settings.contact_stiffness * self.terms.mass(node);
+        self.terms.set_contact(node, obstacle.contact_plane(k));
         let h = self.settings.solver.time_step;
         self.state.v[node] += (self.state.x[node] - before) / h;
         Some(depth)
@@ -788,7 +834,7 @@ impl<T: Real> Book<T> {
             ]
         };
         for node in lifted {
-            c.record(self.push_node(node, |p| table.resolve(p)));
+            c.record(self.push_node(node, &table));
         }
         for side in [BlockSide::Left, BlockSide::Right] {
             let right = side == BlockSide::Right;
@@ -799,9 +845,9 @@ impl<T: Real> Book<T> {
             for k in 1..n.midline {
                 let node = n.block(right, k);
                 let depth = match board {
-                    Some(Some(wall)) => self.push_node(node, |p| wall.resolve(p)),
+                    Some(Some(wall)) => self.push_node(node, &wall),
                     Some(None) => None,
-                    None => self.push_node(node, |p| table.resolve(p)),
+                    None => self.push_node(node, &table),
                 };
                 c.record(depth);
             }
@@ -815,9 +861,10 @@ impl<T: Real> Book<T> {
                         continue;
                     };
                     for node in n.page_offset()..n.total() {
-                        if !n.is_bound(node) {
-                            c.record(self.push_node(node, |p| wall.resolve(p)));
+                        if n.is_bound(node) {
+                            continue;
                         }
+                        c.record(self.push_node(node, &wall));
                     }
                 }
             }

@@ -1,6 +1,8 @@
 //! The book's own term shapes over `folio-kernels`: DOG stars with the flat-star Jacobian
-//! remedy, the binding-midpoint fix restricted to the plane, and a switchable grab pull.
+//! remedy, the binding-midpoint fix restricted to the plane, and switchable one-node
+//! potentials (the grab pull, the contact springs).
 
+use folio_kernels::contact::ContactPlane;
 use folio_kernels::dog::{DogBoundaryStar, DogInnerStar, FlatStarRemedy};
 use folio_kernels::fix::Fix;
 use folio_kernels::positional::Positional;
@@ -64,37 +66,45 @@ impl<T: Real> Constraint<T, 2, 2> for PlanarFix<T> {
     }
 }
 
-/// The positional objective of seed `000_…` eq. 14, $\lVert x_i - p\rVert^2$, switched on
-/// for the grabbed node only. The book declares one on every node a user may grab (the ring
-/// one in from the page border), so that moving the grab to another node changes values,
-/// not the KKT pattern: a grab never re-runs the symbolic analysis.
+/// A one-node potential that can be switched off without leaving the KKT pattern: the
+/// book declares one on every node that may need it, so that switching changes values, not
+/// the pattern, and never re-runs the symbolic analysis.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Pull<T: Real> {
-    /// The objective; its `target` follows the drag.
-    pub positional: Positional<T>,
-    /// Whether this node is held.
+pub struct Switched<P> {
+    /// The potential while on.
+    pub kernel: P,
+    /// Whether it is on.
     pub active: bool,
 }
 
-impl<T: Real> Potential<T, 1> for Pull<T> {
-    const CONSTANT_HESSIAN: bool = true;
+/// The positional objective of seed `000_…` eq. 14, $\lVert x_i - p\rVert^2$, on for the
+/// grabbed node only; declared on every node a user may grab (the ring one in from the page
+/// border). Its `target` follows the drag.
+pub type Pull<T> = Switched<Positional<T>>;
+
+/// A contact found by the collision handling of one step, held as a spring in the next
+/// (see [`ContactPlane`]); declared on every page node.
+pub type Contact<T> = Switched<ContactPlane<T>>;
+
+impl<T: Real, P: Potential<T, 1>> Potential<T, 1> for Switched<P> {
+    const CONSTANT_HESSIAN: bool = P::CONSTANT_HESSIAN;
     fn value(&self, x: &NodeVecs<T, 1>) -> T {
         if self.active {
-            self.positional.value(x)
+            self.kernel.value(x)
         } else {
             T::ZERO
         }
     }
     fn gradient(&self, x: &NodeVecs<T, 1>) -> NodeVecs<T, 1> {
         if self.active {
-            self.positional.gradient(x)
+            self.kernel.gradient(x)
         } else {
             zero_vecs::<T, 1>()
         }
     }
     fn hessian(&self, x: &NodeVecs<T, 1>) -> Blocks<T, 1> {
         if self.active {
-            self.positional.hessian(x)
+            self.kernel.hessian(x)
         } else {
             zero_blocks::<T, 1>()
         }
