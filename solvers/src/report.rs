@@ -51,6 +51,9 @@ pub struct StepReport<T> {
     /// Damped re-solves after failed line searches (see
     /// [`crate::Settings::damping_retries`]) in the last iteration.
     pub damping_retries: u32,
+    /// Line searches that tried a second-order correction (see
+    /// [`crate::Settings::second_order_correction`]).
+    pub second_order_corrections: u32,
     /// Pivots replaced by the sign-aware regularization, summed over the step's
     /// factorizations. Nonzero with the default ordering means a (numerically) singular KKT:
     /// redundant or conflicting constraints.

@@ -29,6 +29,20 @@ pub struct Settings<T> {
     /// shortens the step and improves the conditioning), at most this many times, at most 10.
     /// Default 4.
     pub damping_retries: u32,
+    /// When the full step is refused, try it once more with a second-order correction
+    /// (one more solve with the same factor that pulls the trial back onto the linearized
+    /// constraints) before halving. Without it the merit function refuses good steps of a
+    /// fast-moving constrained page (the Maratos effect) and the page crawls. Default on.
+    pub second_order_correction: bool,
+    /// Violation the line search lets a step leave behind. With $s = 0$ (the default) a
+    /// trial point is accepted by the exact-penalty merit $\psi = E + \mu\lVert C\rVert_2$
+    /// ($\mu = 1.1\lVert\lambda\rVert_2$) alone. With $s > 0$ it is also accepted when
+    /// $\lVert C\rVert_2 \le s$ and either $E$ does not rise or $\lVert C\rVert_2$ falls by a
+    /// tenth (a filter test). A caller that projects onto the constraints after every step
+    /// (the book) sets $s > 0$: large constraint forces make $\mu$ so large that the
+    /// penalty test cuts every step of a fast page to a sliver, while the projection removes
+    /// the violation anyway. Finite, $\ge 0$.
+    pub merit_slack: T,
     /// Elimination order of the symbolic analysis. Default: [`Ordering::Amd`] in `f64`,
     /// [`Ordering::AmdDelayedDuals`] in `f32` (see [`Ordering`] for the measurements).
     pub ordering: Ordering,
@@ -62,6 +76,8 @@ impl<T: Real> Default for Settings<T> {
             line_search: true,
             max_halvings: 20,
             damping_retries: 4,
+            second_order_correction: true,
+            merit_slack: T::ZERO,
             ordering: if T::EPSILON.to_f64() < 1e-10 {
                 Ordering::Amd
             } else {
@@ -94,6 +110,9 @@ impl<T: Real> Settings<T> {
         }
         if self.max_halvings > 60 {
             return bad("max_halvings", "at most 60");
+        }
+        if !(self.merit_slack.is_finite() && self.merit_slack >= T::ZERO) {
+            return bad("merit_slack", "finite and >= 0");
         }
         if self.damping_retries > 10 {
             return bad("damping_retries", "at most 10");

@@ -224,6 +224,7 @@ impl<T: Real> Solver<T> {
             merit_after: None,
             halvings: 0,
             damping_retries: 0,
+            second_order_corrections: 0,
             regularized_pivots: 0,
             hessian_shift: T::ZERO,
             refinement_steps: 0,
@@ -254,9 +255,10 @@ impl<T: Real> Solver<T> {
                 converged = true;
                 break;
             }
-            // A direction the line search refuses is retried with the inertia scaled up,
-            // M/h^2 -> (1 + gamma) M/h^2 with gamma = 1, 10, 100, ... (a proximal damping:
-            // shorter, better conditioned steps), up to `damping_retries` times.
+            // A factorization that fails, or a direction the line search refuses, is retried
+            // with the inertia scaled up, M/h^2 -> (1 + gamma) M/h^2 with gamma = 1, 10,
+            // 100, ... (a proximal damping: shorter, better conditioned steps), up to
+            // `damping_retries` times.
             let mut gamma = T::ZERO;
             let mut retry = 0;
             let dofs = w.kkt.pattern.dofs;
@@ -268,36 +270,47 @@ impl<T: Real> Solver<T> {
                     report.hessian_shift = shift;
                 }
                 w.factored = matches!(outcome, FactorOutcome::Factored { .. });
-                match outcome {
-                    FactorOutcome::Factored { regularized, .. } => {
-                        report.regularized_pivots += regularized;
+                let mut solved = false;
+                if let FactorOutcome::Factored { regularized, .. } = outcome {
+                    report.regularized_pivots += regularized;
+                    let refinement = w.kkt.solve_refined(
+                        &mut w.solution,
+                        &w.rhs,
+                        s.refinement_steps,
+                        s.refinement_tolerance,
+                    );
+                    report.iterations += 1;
+                    report.refinement_steps += refinement.steps;
+                    solved = refinement.relative_residual.is_finite()
+                        && max_abs(&w.solution).is_finite();
+                    if solved && refinement.relative_residual > report.linear_residual {
+                        report.linear_residual = refinement.relative_residual;
                     }
-                    FactorOutcome::NonFinite { .. } => {
+                }
+                if !solved {
+                    if retry == s.damping_retries {
                         report.status = StepStatus::NumericalFailure;
                         return Ok(report);
                     }
-                }
-                let refinement = w.kkt.solve_refined(
-                    &mut w.solution,
-                    &w.rhs,
-                    s.refinement_steps,
-                    s.refinement_tolerance,
-                );
-                report.iterations += 1;
-                report.refinement_steps += refinement.steps;
-                if !(refinement.relative_residual.is_finite() && max_abs(&w.solution).is_finite()) {
-                    report.status = StepStatus::NumericalFailure;
-                    return Ok(report);
-                }
-                if refinement.relative_residual > report.linear_residual {
-                    report.linear_residual = refinement.relative_residual;
+                    retry += 1;
+                    report.damping_retries = retry;
+                    gamma = w.damp(gamma, h);
+                    continue;
                 }
                 if !s.line_search {
                     w.set_trial(T::ONE);
                     report.constraint_residual = None;
                     break;
                 }
-                let search = w.line_search(model, h, e.energy, s.max_halvings)?;
+                let search = w.line_search(
+                    model,
+                    h,
+                    e.energy,
+                    s.max_halvings,
+                    s.second_order_correction,
+                    s.merit_slack,
+                )?;
+                report.second_order_corrections += u32::from(search.second_order);
                 report.merit_before = Some(search.before);
                 report.merit_after = search.after;
                 report.halvings += search.halvings;
@@ -311,19 +324,7 @@ impl<T: Real> Solver<T> {
                 }
                 retry += 1;
                 report.damping_retries = retry;
-                // The evaluation at the iterate is still in the values (the factor is
-                // separate); only the diagonal changes.
-                let next = if gamma == T::ZERO {
-                    T::ONE
-                } else {
-                    gamma * T::from_f64(10.0)
-                };
-                let inv_h2 = T::ONE / (h * h);
-                for d in 0..dofs {
-                    let slot = w.kkt.pattern.diagonal_slot(d);
-                    w.kkt.values[slot] += (next - gamma) * w.mass[d] * inv_h2;
-                }
-                gamma = next;
+                gamma = w.damp(gamma, h);
             }
             core::mem::swap(&mut w.x, &mut w.trial);
             let (_, lambda) = w.solution.split_at(dofs);
@@ -352,6 +353,9 @@ impl<T: Real> Solver<T> {
     }
 }
 
+/// Step halvings a projection iteration may try before it gives up.
+const PROJECTION_HALVINGS: u32 = 6;
+
 /// What [`Solver::project_constraints`] did.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Correction<T> {
@@ -375,8 +379,9 @@ impl<T: Real> Solver<T> {
     /// numeric factorization of the analysed pattern and no allocation. The one-Newton-step
     /// default leaves $C = O(\lVert\Delta x\rVert^2)$ behind, and a collision push of depth
     /// $d$ leaves $C = O(d/\ell)$ (module docs); this removes both. Iterates until
-    /// $\lVert C\rVert_\infty \le$ `tolerance` or `max_steps` iterations; an iteration that
-    /// does not lower $\lVert C\rVert_\infty$ is refused and ends the projection. Does
+    /// $\lVert C\rVert_\infty \le$ `tolerance` or `max_steps` iterations; each iteration
+    /// halves its step (up to 6 times) until $\lVert C\rVert_\infty$ falls, and one that
+    /// cannot lower it ends the projection. Does
     /// nothing (zero steps) before the first successful step of the topology.
     ///
     /// # Errors
@@ -451,12 +456,23 @@ impl<T: Real> Solver<T> {
                 s.refinement_steps,
                 s.refinement_tolerance,
             );
-            w.set_trial(T::ONE);
-            let e = w.evaluate(model, h, true, Derivatives::None)?;
-            let next = max_abs(&w.constraint);
-            if !(e.finite && next < residual) {
-                break;
+            // Backtrack while max|C| does not fall (on nearly flat DOG stars the remedied
+            // Jacobian is not the exact one, and a full step can overshoot).
+            let mut alpha = T::ONE;
+            let mut next = None;
+            for _ in 0..PROJECTION_HALVINGS {
+                w.set_trial(alpha);
+                let e = w.evaluate(model, h, true, Derivatives::None)?;
+                let c = max_abs(&w.constraint);
+                if e.finite && c < residual {
+                    next = Some(c);
+                    break;
+                }
+                alpha *= T::HALF;
             }
+            let Some(next) = next else {
+                break;
+            };
             core::mem::swap(&mut w.x, &mut w.trial);
             residual = next;
             out.steps += 1;
@@ -478,6 +494,16 @@ struct LineSearch<T> {
     /// Merit at the accepted point; `None` when every halving failed.
     after: Option<T>,
     halvings: u32,
+    /// A second-order correction was tried.
+    second_order: bool,
+}
+
+/// `x[node] += alpha * v[d]` along the axis of every free coordinate `d`.
+fn add_to<T: Real>(x: &mut [T::Vec3], coordinate_of: &[u32], v: &[T], alpha: T) {
+    for (d, &c) in coordinate_of.iter().enumerate() {
+        let (node, axis) = (c as usize / 3, c as usize % 3);
+        x[node] += T::Vec3::AXES[axis] * (alpha * v[d]);
+    }
 }
 
 /// $\lVert v\rVert_2$.
@@ -616,6 +642,8 @@ impl<T: Real> Workspace<T> {
         h: T,
         energy: T,
         max_halvings: u32,
+        soc: bool,
+        slack: T,
     ) -> Result<LineSearch<T>, SolverError> {
         let dofs = self.kkt.pattern.dofs;
         let mu = T::from_f64(1.1) * norm2(&self.solution[dofs..]);
@@ -624,22 +652,58 @@ impl<T: Real> Workspace<T> {
         } else {
             T::from_f64(0.05)
         };
-        let before = energy + mu * norm2(&self.constraint);
-        // Changes of psi below its rounding noise count as no increase, so that a step at
+        let theta0 = norm2(&self.constraint);
+        let before = energy + mu * theta0;
+        // Changes below the rounding noise count as no increase, so that a step at
         // convergence is not refused for noise.
-        let magnitude = if before < T::ZERO { -before } else { before };
-        let ceiling = before + T::from_f64(16.0) * T::EPSILON * magnitude;
+        let noise = |v: T| v + T::from_f64(16.0) * T::EPSILON * if v < T::ZERO { -v } else { v };
+        let (ceiling, energy_ceiling) = (noise(before), noise(energy));
+        // The exact-penalty test, or (with a slack) the filter test: a violation within the
+        // slack is allowed if the energy does not rise or the violation falls by a tenth.
+        let accept = |e: T, theta: T| {
+            let merit = e + mu * theta;
+            let penalty = merit <= ceiling;
+            let filter = slack > T::ZERO
+                && theta <= slack
+                && (e <= energy_ceiling || theta <= T::from_f64(0.9) * theta0);
+            (merit.is_finite() && (penalty || filter)).then_some(merit)
+        };
         let mut alpha = T::ONE;
+        let mut second_order = false;
         for halvings in 0..=max_halvings {
             self.set_trial(alpha);
             let t = self.evaluate(model, h, true, Derivatives::None)?;
-            let merit = t.energy + mu * norm2(&self.constraint);
-            if t.finite && merit.is_finite() && merit <= ceiling {
+            if let Some(merit) = accept(t.energy, norm2(&self.constraint)).filter(|_| t.finite) {
                 return Ok(LineSearch {
                     before,
                     after: Some(merit),
                     halvings,
+                    second_order,
                 });
+            }
+            if halvings == 0 && soc && t.finite {
+                // Second-order correction (Nocedal & Wright, Alg. 18.3): the full step is
+                // often refused only because C grew to second order along it (the Maratos
+                // effect); one more solve with the same factor,
+                // [A J^T; J 0] [d; mu] = [0; -C(x + dx)], pulls the trial back towards C = 0.
+                let dofs = self.kkt.pattern.dofs;
+                self.rhs[..dofs].iter_mut().for_each(|r| *r = T::ZERO);
+                for (r, &c) in self.rhs[dofs..].iter_mut().zip(&self.constraint) {
+                    *r = -c;
+                }
+                self.kkt.solve_refined(&mut self.product, &self.rhs, 0, T::ZERO);
+                add_to(&mut self.trial, &self.kkt.pattern.coordinate_of, &self.product, T::ONE);
+                let t = self.evaluate(model, h, true, Derivatives::None)?;
+                second_order = true;
+                if let Some(merit) = accept(t.energy, norm2(&self.constraint)).filter(|_| t.finite)
+                {
+                    return Ok(LineSearch {
+                        before,
+                        after: Some(merit),
+                        halvings,
+                        second_order,
+                    });
+                }
             }
             alpha *= T::HALF;
         }
@@ -647,17 +711,31 @@ impl<T: Real> Workspace<T> {
             before,
             after: None,
             halvings: max_halvings,
+            second_order,
         })
+    }
+
+    /// Raises the inertia damping from `gamma` to the next of $1, 10, 100, \dots$: the
+    /// evaluation at the iterate is still in the KKT values (the factor is separate), so only
+    /// the primal diagonal changes, by $(\gamma' - \gamma) M/h^2$. Returns $\gamma'$.
+    fn damp(&mut self, gamma: T, h: T) -> T {
+        let next = if gamma == T::ZERO {
+            T::ONE
+        } else {
+            gamma * T::from_f64(10.0)
+        };
+        let inv_h2 = T::ONE / (h * h);
+        for d in 0..self.kkt.pattern.dofs {
+            let slot = self.kkt.pattern.diagonal_slot(d);
+            self.kkt.values[slot] += (next - gamma) * self.mass[d] * inv_h2;
+        }
+        next
     }
 
     /// `trial = x + alpha * dx` on the free coordinates.
     fn set_trial(&mut self, alpha: T) {
         self.trial.copy_from_slice(&self.x);
-        for (d, &c) in self.kkt.pattern.coordinate_of.iter().enumerate() {
-            let (node, axis) = (c as usize / 3, c as usize % 3);
-            let step = T::Vec3::AXES[axis] * (alpha * self.solution[d]);
-            self.trial[node] += step;
-        }
+        add_to(&mut self.trial, &self.kkt.pattern.coordinate_of, &self.solution, alpha);
     }
 
     /// Writes the iterate and $v = (x - x^{(k-1)})/h$ into `state`.

@@ -149,12 +149,17 @@ fn bookmark_flip_moves_the_held_pages() {
         for e in script.events_at(frame) {
             book.apply(script.camera, script.forward, e.action).unwrap();
         }
-        book.step().unwrap();
+        let report = book.step().unwrap();
+        assert!(report.solver.status.advanced(), "frame {frame}: {:?}", report.solver);
+        let width = book.layout().params.page_width;
         for k in 0..book.flips().len() {
             book.flip_page(k, &mut page);
-            assert!(page.iter().all(|p| p.is_finite()));
-            // The flying page lies between the block and the held page: its outer corner is
-            // no higher than the highest point of the history or the page now.
+            // The flying page is finite and stays over the book: above the table, within a
+            // page width of the spine and no higher than a page width.
+            assert!(page.iter().all(|p| p.is_finite()
+                && p.x.abs() <= width + 1.0
+                && p.y >= -1e-9
+                && p.y <= width + 1.0));
             flying_seen += 1;
         }
         if frame == 150 {

@@ -61,6 +61,12 @@ pub struct BookSettings<T: Real> {
     /// Smallest mass given to a block's midline (page masses), so that an empty block still
     /// has a positive mass matrix.
     pub min_block_mass: T,
+    /// The grab's leash (page units): the pull (eq. 14) aims at most this far from the held
+    /// node, towards the user's target. A finger that runs ahead of the page otherwise asks
+    /// one Newton step to carry the page many cells at once, far outside its
+    /// linearization; the line search then cuts the step to a sliver every frame and the
+    /// page crawls further and further behind. Default 1 (two thirds of a grid cell).
+    pub pull_reach: T,
     /// Tent height over the binding as a fraction of the grabbed node's distance from the
     /// binding (see [`crate::book::interaction::Tent`]).
     pub tent_height: T,
@@ -122,12 +128,13 @@ impl<T: Real> Default for BookSettings<T> {
             page_mass: T::ONE,
             cover_mass: T::from_f64(5.0),
             min_block_mass: T::HALF,
+            pull_reach: T::ONE,
             tent_height: T::from_f64(0.6),
             merge_speed: T::from_f64(0.5),
             merge_frames: 10,
             constraint_tolerance: T::from_f64(1e-4),
             max_corrections: 3,
-            contact_pin_weight: T::from_f64(1e4),
+            contact_pin_weight: T::from_f64(1e3),
             contact_stiffness: T::from_f64(if T::EPSILON.to_f64() < 1e-10 {
                 1e6
             } else {
@@ -144,7 +151,10 @@ impl<T: Real> Default for BookSettings<T> {
             history_interval: 4,
             flip_frames: 24,
             max_flips: 8,
-            solver: Settings::default(),
+            solver: Settings {
+                merit_slack: T::from_f64(0.05),
+                ..Settings::default()
+            },
         }
     }
 }

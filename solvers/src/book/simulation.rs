@@ -60,6 +60,9 @@ pub enum Phase {
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Hold<T: Real> {
     node: usize,
+    /// Where the user wants the node (the pull's target is this on a leash, see
+    /// [`BookSettings::pull_reach`]).
+    target: T::Vec3,
     plane_point: T::Vec3,
     plane_normal: T::Vec3,
     tent: Tent<T>,
@@ -213,6 +216,7 @@ impl<T: Real> BookSettings<T> {
             ("cover_mass", self.cover_mass),
             ("min_block_mass", self.min_block_mass),
             ("merge_speed", self.merge_speed),
+            ("pull_reach", self.pull_reach),
             ("settle_tolerance", self.settle_tolerance),
             ("constraint_tolerance", self.constraint_tolerance),
         ] {
@@ -508,35 +512,15 @@ impl<T: Real> Book<T> {
                 what: "camera forward direction",
             });
         }
-        if pages == 0 {
-            return Err(BookError::InvalidInput {
-                what: "pages to grab (zero)",
-            });
-        }
-        let side = match self.active {
-            Some(a) => a.from,
-            None => {
-                let Some(side) = self.hit_block(ray) else {
-                    return Ok(GrabOutcome::Missed);
-                };
-                if self.counts.block(side) < pages {
-                    return Ok(GrabOutcome::NotEnoughPages);
-                }
-                *self.counts.block_mut(side) -= pages;
-                self.counts.active = pages;
-                self.place_page(side, pages);
-                self.update_masses();
-                let po = self.terms.nodes.page_offset();
-                self.history.restart(&self.state.x[po..]);
-                self.active = Some(ActivePage {
-                    from: side,
-                    hold: None,
-                    slow_frames: 0,
-                });
-                side
-            }
+        let pick = if self.active.is_none() {
+            self.hit_block(ray)
+        } else {
+            None
         };
-        let n = self.terms.nodes;
+        let side = match self.grab_side(pages, pick)? {
+            Ok(side) => side,
+            Err(outcome) => return Ok(outcome),
+        };
         let mut best = (T::MAX, 0);
         for &node in self.terms.pull_nodes() {
             let d = ray.distance_sq(self.state.x[node]);
@@ -544,7 +528,102 @@ impl<T: Real> Book<T> {
                 best = (d, node);
             }
         }
-        let node = best.1;
+        Ok(self.hold_node(side, best.1, forward))
+    }
+
+    /// Grabs `pages` pages from the block on `side` (a stack when more than one) by the
+    /// grab-ring node nearest the material point `at` $= (u, v)$ (page units: $u$ across from
+    /// the spine, $v$ along it), as if seen from above. For callers that place the finger
+    /// themselves ([`Book::drag_to`]), such as the page models.
+    ///
+    /// # Errors
+    /// [`BookError::InvalidInput`] for a non-finite point or zero pages.
+    pub fn grab_at(
+        &mut self,
+        side: BlockSide,
+        at: [f64; 2],
+        pages: u32,
+    ) -> Result<GrabOutcome, BookError> {
+        if !(at[0].is_finite() && at[1].is_finite()) {
+            return Err(BookError::InvalidInput { what: "grab point" });
+        }
+        let side = match self.grab_side(pages, Some(side))? {
+            Ok(side) => side,
+            Err(outcome) => return Ok(outcome),
+        };
+        let n = self.terms.nodes;
+        let spacing = self.grid_spacing();
+        let mut best = (f64::MAX, 0);
+        for &node in self.terms.pull_nodes() {
+            let (i, j) = n.grid.coords(node - n.page_offset());
+            let du = i as f64 * spacing[0] - at[0];
+            let dv = j as f64 * spacing[1] - at[1];
+            if du * du + dv * dv < best.0 {
+                best = (du * du + dv * dv, node);
+            }
+        }
+        let down = T::Vec3::new(T::ZERO, -T::ONE, T::ZERO);
+        Ok(self.hold_node(side, best.1, down))
+    }
+
+    /// The block a grab holds: the active page's, or else `pick` after `pages` pages of it
+    /// became the active page. `Ok(Err(outcome))` when nothing was grabbed.
+    fn grab_side(
+        &mut self,
+        pages: u32,
+        pick: Option<BlockSide>,
+    ) -> Result<Result<BlockSide, GrabOutcome>, BookError> {
+        if pages == 0 {
+            return Err(BookError::InvalidInput {
+                what: "pages to grab (zero)",
+            });
+        }
+        if let Some(a) = self.active {
+            return Ok(Ok(a.from));
+        }
+        let Some(side) = pick else {
+            return Ok(Err(GrabOutcome::Missed));
+        };
+        if !self.take_pages(side, pages) {
+            return Ok(Err(GrabOutcome::NotEnoughPages));
+        }
+        Ok(Ok(side))
+    }
+
+    /// The page grid's rest spacing `[across, along]` (page units).
+    #[must_use]
+    pub fn grid_spacing(&self) -> [f64; 2] {
+        let p = &self.layout.params;
+        [
+            p.page_width / self.settings.quads_across as f64,
+            p.page_height() / self.settings.quads_along as f64,
+        ]
+    }
+
+    /// Makes the top `pages` pages of the block on `side` the active page, laid on the block;
+    /// `false` (nothing changes) when the block holds fewer.
+    fn take_pages(&mut self, side: BlockSide, pages: u32) -> bool {
+        if self.counts.block(side) < pages {
+            return false;
+        }
+        *self.counts.block_mut(side) -= pages;
+        self.counts.active = pages;
+        self.place_page(side, pages);
+        self.update_masses();
+        let po = self.terms.nodes.page_offset();
+        self.history.restart(&self.state.x[po..]);
+        self.active = Some(ActivePage {
+            from: side,
+            hold: None,
+            slow_frames: 0,
+        });
+        true
+    }
+
+    /// Holds page node `node` (global index) where it is, with the drag plane facing
+    /// `forward` (unit or not; checked by the callers) and the tent over the binding.
+    fn hold_node(&mut self, side: BlockSide, node: usize, forward: T::Vec3) -> GrabOutcome {
+        let n = self.terms.nodes;
         let held = self.state.x[node];
         let (i, _) = n.grid.coords(node - n.page_offset());
         let p = self.layout.params;
@@ -566,6 +645,7 @@ impl<T: Real> Book<T> {
         let normal = forward / math::length::<T>(forward);
         let hold = Hold {
             node,
+            target: held,
             plane_point: held,
             plane_normal: normal,
             tent,
@@ -575,10 +655,10 @@ impl<T: Real> Book<T> {
             a.hold = Some(hold);
             a.slow_frames = 0;
         }
-        Ok(GrabOutcome::Grabbed {
+        GrabOutcome::Grabbed {
             side,
             node: node - n.page_offset(),
-        })
+        }
     }
 
     /// The block whose top surface `ray` hits first, if any.
@@ -630,15 +710,64 @@ impl<T: Real> Book<T> {
                 what: "drag target",
             });
         }
-        self.terms.set_pull(Some((hold.node, target)));
+        self.set_target(target);
         Ok(DragOutcome::Moved)
     }
 
-    /// The held node's current target, if a node is held.
+    /// Moves the held node's target to `target` itself, without the drag plane or the tent:
+    /// for callers that own the finger's path (the page models).
+    ///
+    /// # Errors
+    /// [`BookError::InvalidInput`] for a non-finite target; the target is unchanged.
+    pub fn drag_to(&mut self, target: T::Vec3) -> Result<DragOutcome, BookError> {
+        if !vec_finite::<T>(target) {
+            return Err(BookError::InvalidInput {
+                what: "drag target",
+            });
+        }
+        if self.active.and_then(|a| a.hold).is_none() {
+            return Ok(DragOutcome::NotHeld);
+        }
+        self.set_target(target);
+        Ok(DragOutcome::Moved)
+    }
+
+    /// Stores the user's target of the held node (applied on the leash at the next step).
+    fn set_target(&mut self, target: T::Vec3) {
+        if let Some(hold) = self.active.as_mut().and_then(|a| a.hold.as_mut()) {
+            hold.target = target;
+        }
+    }
+
+    /// Sets the pull of the held node to its target on the leash of length
+    /// [`BookSettings::pull_reach`]: $p = x_i + (t - x_i)\min(1, r / \lVert t - x_i\rVert)$.
+    fn leash_pull(&mut self) {
+        let Some(hold) = self.active.and_then(|a| a.hold) else {
+            return;
+        };
+        let x = self.state.x[hold.node];
+        let d = hold.target - x;
+        let len = math::length::<T>(d);
+        let reach = self.settings.pull_reach;
+        let p = if len > reach {
+            x + d * (reach / len)
+        } else {
+            hold.target
+        };
+        self.terms.set_pull(Some((hold.node, p)));
+    }
+
+    /// The held node (index into the page grid), if one is held.
+    #[must_use]
+    pub fn held_node(&self) -> Option<usize> {
+        let hold = self.active.and_then(|a| a.hold)?;
+        Some(hold.node - self.terms.nodes.page_offset())
+    }
+
+    /// The held node's current target (where the user wants it), if a node is held.
     #[must_use]
     pub fn target(&self) -> Option<T::Vec3> {
-        let hold = self.active.and_then(|a| a.hold)?;
-        self.terms.pull_target(hold.node)
+        Some(self.active.and_then(|a| a.hold)?.target)
     }
 
     /// Lets go of the active page; returns whether something was held.
@@ -661,6 +790,7 @@ impl<T: Real> Book<T> {
     /// Only setup errors of the solver (they cannot occur after a successful [`Book::new`]).
     pub fn step(&mut self) -> Result<BookStepReport<T>, BookError> {
         let phase = self.phase();
+        self.leash_pull();
         let drag = T::ONE / (T::ONE + self.settings.air_drag * self.settings.solver.time_step);
         for v in &mut self.state.v {
             *v *= drag;
@@ -687,9 +817,10 @@ impl<T: Real> Book<T> {
             self.terms.clear_contacts();
             rounds = self.collide(&mut contacts, self.settings.collision_rounds);
             // Projection and collision alternate: a node the projection moves into a block
-            // is pushed out and pinned in the next projection, up to `collision_rounds`
-            // passes, so the step ends with both the constraints and the contacts met.
-            for pass in 0..self.settings.collision_rounds {
+            // is pushed out and pinned in the next projection, up to twice
+            // `collision_rounds` passes, so the step ends with both the constraints and the
+            // contacts met (a landing page needs more passes than a resting one).
+            for pass in 0..2 * self.settings.collision_rounds {
                 let c = self.project()?;
                 if pass == 0 {
                     correction.before = c.before;
