@@ -691,8 +691,14 @@ impl<T: Real> Workspace<T> {
                 for (r, &c) in self.rhs[dofs..].iter_mut().zip(&self.constraint) {
                     *r = -c;
                 }
-                self.kkt.solve_refined(&mut self.product, &self.rhs, 0, T::ZERO);
-                add_to(&mut self.trial, &self.kkt.pattern.coordinate_of, &self.product, T::ONE);
+                self.kkt
+                    .solve_refined(&mut self.product, &self.rhs, 0, T::ZERO);
+                add_to(
+                    &mut self.trial,
+                    &self.kkt.pattern.coordinate_of,
+                    &self.product,
+                    T::ONE,
+                );
                 let t = self.evaluate(model, h, true, Derivatives::None)?;
                 second_order = true;
                 if let Some(merit) = accept(t.energy, norm2(&self.constraint)).filter(|_| t.finite)
@@ -735,7 +741,12 @@ impl<T: Real> Workspace<T> {
     /// `trial = x + alpha * dx` on the free coordinates.
     fn set_trial(&mut self, alpha: T) {
         self.trial.copy_from_slice(&self.x);
-        add_to(&mut self.trial, &self.kkt.pattern.coordinate_of, &self.solution, alpha);
+        add_to(
+            &mut self.trial,
+            &self.kkt.pattern.coordinate_of,
+            &self.solution,
+            alpha,
+        );
     }
 
     /// Writes the iterate and $v = (x - x^{(k-1)})/h$ into `state`.

@@ -150,7 +150,11 @@ fn bookmark_flip_moves_the_held_pages() {
             book.apply(script.camera, script.forward, e.action).unwrap();
         }
         let report = book.step().unwrap();
-        assert!(report.solver.status.advanced(), "frame {frame}: {:?}", report.solver);
+        assert!(
+            report.solver.status.advanced(),
+            "frame {frame}: {:?}",
+            report.solver
+        );
         let width = book.layout().params.page_width;
         for k in 0..book.flips().len() {
             book.flip_page(k, &mut page);
