@@ -3,6 +3,7 @@
 
 pub mod book;
 pub mod kkt;
+pub mod pages;
 
 use folio_kernels::Real;
 use folio_kernels::real::Vec3Ops;

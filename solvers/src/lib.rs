@@ -27,6 +27,7 @@ pub mod ldlt;
 pub mod matrix_market;
 pub mod model;
 pub mod ordering;
+pub mod page;
 pub mod pattern;
 pub mod report;
 pub mod settings;

@@ -1,6 +1,10 @@
-//! Writes the recorded inputs in `tests/fixtures/` (see `folio_solvers::book::script`): a
-//! camera above and in front of the default book, and finger paths on the table plane
-//! turned into camera rays, as a touch screen with that camera would produce them.
+//! Writes the recorded inputs in `tests/fixtures/`:
+//! - for the book (see `folio_solvers::book::script`): a camera above and in front of the
+//!   default book, and finger paths on the table plane turned into camera rays, as a touch
+//!   screen with that camera would produce them;
+//! - for the page models (see `folio_solvers::page::touch`): the shared page turn
+//!   `page_turn.touch` and seed 003's experiment `seed003_turn.touch`, finger positions in
+//!   the page frame.
 //!
 //! `cargo run -p folio-tests --example record_fixtures` rewrites them.
 
@@ -94,5 +98,39 @@ fn main() -> std::io::Result<()> {
     flip.swipe(231, 331, (3.0, mid), (-6.0, mid - 1.0));
     flip.line(331, "release");
     std::fs::write(dir.join("bookmark_flip.input"), flip.text)?;
+
+    let touch = folio_solvers::page::TouchScript::page_turn(
+        12.0,
+        12.0 * core::f64::consts::SQRT_2,
+        10,
+        120,
+        240,
+    );
+    let header = "# The shared page turn of the page models: grab the fore-edge near the bottom corner, carry it over the spine in 2 s, let go.\n";
+    std::fs::write(
+        dir.join("page_turn.touch"),
+        format!("{header}{}", touch.to_text()),
+    )?;
+
+    // Seed 003's experiment (Sec. 3.1): the 25 x 25 page of 6 x 6 particles, its moved edge
+    // carried over the fixed spine.
+    let path = (0..120)
+        .map(|k| {
+            let s = f64::from(k) / 119.0;
+            let phi = core::f64::consts::PI * s * s * (3.0 - 2.0 * s);
+            [25.0 * phi.cos(), 17.5 * phi.sin(), 12.5]
+        })
+        .collect();
+    let seed = folio_solvers::page::TouchScript {
+        frames: 300,
+        grab: [25.0, 12.5],
+        grab_frame: 10,
+        path,
+    };
+    let header = "# Seed 003's experiment: the edge of the 25 x 25 page carried over the fixed spine in 2 s, let go.\n";
+    std::fs::write(
+        dir.join("seed003_turn.touch"),
+        format!("{header}{}", seed.to_text()),
+    )?;
     Ok(())
 }

@@ -1,0 +1,57 @@
+//! The seed's semi-implicit (symplectic) Euler step of the free particles (seed `003_…`
+//! Sec. 2.1 and Sec. 3.1 steps 3-5):
+//! $$F_k = \sum_{s \ni k} F_s(x^n) + c\,v_k^n - w\,\hat y,\qquad
+//!   v_k^{n+1} = v_k^n + \frac{h}{m} F_k,\qquad x_k^{n+1} = x_k^n + h\,v_k^{n+1},$$
+//! with the spring forces $F_s$ of [`folio_kernels::spring::Spring::force`], the particle
+//! damping $c\,v$ of [`particle_damping`] and the weight $w = m g$ along −Y. Fixed and
+//! gripped particles are not advanced (the caller has placed them); their positions enter
+//! the spring forces. $h$ is one substep, the frame's step over
+//! [`super::SpringSettings::substeps`]. Stable while $h\,\omega_{max} < 2$ (see
+//! [`super::Integrator::SemiImplicitEuler`]).
+
+use folio_kernels::spring::particle_damping;
+use folio_kernels::{Real, Vec3Ops};
+
+use super::network::{Role, SpringNetwork};
+
+/// Advances the free particles of `x`, `v` by one step `h` with damping coefficient
+/// `damping` $= c$ (module docs), using `forces` (one per particle) as scratch. Slices of
+/// unequal length are cut to the shortest.
+pub fn semi_implicit_euler<T: Real>(
+    x: &mut [T::Vec3],
+    v: &mut [T::Vec3],
+    network: &SpringNetwork<T>,
+    damping: T,
+    h: T,
+    forces: &mut [T::Vec3],
+) {
+    let weight = T::Vec3::new(T::ZERO, -network.particle_weight(), T::ZERO);
+    for (f, &vk) in forces.iter_mut().zip(v.iter()) {
+        *f = weight + particle_damping::<T>(vk, damping);
+    }
+    for t in network.springs().terms() {
+        let (a, b) = (t.nodes[0] as usize, t.nodes[1] as usize);
+        let (Some(&xa), Some(&xb)) = (x.get(a), x.get(b)) else {
+            continue;
+        };
+        let f = t.kernel.force(&[xa, xb]);
+        if let Some(fa) = forces.get_mut(a) {
+            *fa += f[0];
+        }
+        if let Some(fb) = forces.get_mut(b) {
+            *fb += f[1];
+        }
+    }
+    let step = h / network.particle_mass();
+    for (((xk, vk), &f), role) in x
+        .iter_mut()
+        .zip(v.iter_mut())
+        .zip(forces.iter())
+        .zip(network.roles())
+    {
+        if *role == Role::Free {
+            *vk += f * step;
+            *xk += *vk * h;
+        }
+    }
+}

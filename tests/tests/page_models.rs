@@ -1,0 +1,294 @@
+//! The page models behind one interface (seed `001_…` cone curl, the DOG page of seed
+//! `000_…`, the mass-spring page of seed `003_…`): the cone's isometry and touch fit, and the
+//! same recorded drag on every model with the shared metrics.
+
+use core::f64::consts::{FRAC_PI_2, SQRT_2};
+use folio_geometry::QuadGrid;
+use folio_kernels::cone::ConeCurl;
+use folio_kernels::{Real, Vec3Ops};
+use folio_solvers::book::BookSettings;
+use folio_solvers::page::cone::{ConePage, ConeParameters, ConeSettings, flip_parameters};
+use folio_solvers::page::dog::DogPage;
+use folio_solvers::page::spring::{SpringPage, SpringSettings};
+use folio_solvers::page::{
+    FrameMetrics, PageError, PageModel, PageStatus, TouchScript, frame_metrics,
+};
+
+const WIDTH: f64 = 12.0;
+const HEIGHT: f64 = 12.0 * SQRT_2;
+const PAGE_TURN: &str = include_str!("../fixtures/page_turn.touch");
+
+/// The render grid of the comparisons: 24 x 34 quads (half a page unit).
+fn render_grid() -> QuadGrid {
+    QuadGrid::new(24, 34).unwrap()
+}
+
+/// Per-frame results of one model on one script.
+#[derive(Default, Debug)]
+struct Played {
+    metrics: Vec<FrameMetrics<f64>>,
+    statuses: Vec<PageStatus>,
+    gaps: Vec<Option<f64>>,
+    nonfinite: usize,
+    last: Vec<[f64; 3]>,
+}
+
+fn play<T: Real>(model: &mut dyn PageModel<T>, script: &TouchScript) -> Played {
+    let grid = render_grid();
+    let mut samples = vec![T::Vec3::ZERO; grid.len()];
+    let mut out = Played::default();
+    for frame in 0..script.frames {
+        script
+            .at(frame)
+            .apply(model)
+            .expect("script input is valid");
+        let step = model.step().expect("step");
+        model.sample(grid, &mut samples).unwrap();
+        let finite = |p: &T::Vec3| p.x().is_finite() && p.y().is_finite() && p.z().is_finite();
+        if !samples.iter().all(finite) {
+            out.nonfinite += 1;
+        }
+        let m = frame_metrics(grid, model.size(), &samples).unwrap();
+        out.metrics.push(FrameMetrics {
+            max_stretch: m.max_stretch.to_f64(),
+            rmse_stretch: m.rmse_stretch.to_f64(),
+            max_angle_defect: m.max_angle_defect.to_f64(),
+        });
+        out.statuses.push(step.status);
+        out.gaps.push(step.finger_gap.map(Real::to_f64));
+    }
+    out.last = samples
+        .iter()
+        .map(|p| [p.x().to_f64(), p.y().to_f64(), p.z().to_f64()])
+        .collect();
+    out
+}
+
+fn mean(v: impl Iterator<Item = f64>) -> f64 {
+    let (sum, n) = v.fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
+    sum / n.max(1) as f64
+}
+
+fn worst(v: impl Iterator<Item = f64>) -> f64 {
+    v.fold(0.0, f64::max)
+}
+
+fn count(p: &Played, status: PageStatus) -> usize {
+    p.statuses.iter().filter(|s| **s == status).count()
+}
+
+fn summary(name: &str, p: &Played) {
+    println!(
+        "{name}: max stretch mean {:.4} worst {:.4}; RMSE stretch mean {:.4}; angle defect mean {:.2e} worst {:.2e}; \
+         unreachable frames {}, stalled {}, finger gap mean {:.3} worst {:.3}",
+        mean(p.metrics.iter().map(|m| m.max_stretch)),
+        worst(p.metrics.iter().map(|m| m.max_stretch)),
+        mean(p.metrics.iter().map(|m| m.rmse_stretch)),
+        mean(p.metrics.iter().map(|m| m.max_angle_defect)),
+        worst(p.metrics.iter().map(|m| m.max_angle_defect)),
+        count(p, PageStatus::Unreachable),
+        count(p, PageStatus::Stalled),
+        mean(p.gaps.iter().flatten().copied()),
+        worst(p.gaps.iter().flatten().copied()),
+    );
+}
+
+/// The three models with their default settings, cheapest first.
+fn all_models<T: Real>() -> Vec<Box<dyn PageModel<T>>> {
+    vec![
+        Box::new(ConePage::new(ConeSettings::default()).unwrap()),
+        Box::new(SpringPage::new(SpringSettings::default()).unwrap()),
+        Box::new(DogPage::new(BookSettings::default()).unwrap()),
+    ]
+}
+
+#[test]
+fn the_recorded_drag_is_the_shared_page_turn() {
+    let recorded = TouchScript::parse(PAGE_TURN).unwrap();
+    assert_eq!(
+        recorded,
+        TouchScript::page_turn(WIDTH, HEIGHT, 10, 120, 240)
+    );
+    assert_eq!(TouchScript::parse(&recorded.to_text()).unwrap(), recorded);
+}
+
+#[test]
+fn cone_flip_is_an_isometry_on_every_frame() {
+    for (name, theta) in [("default", 0.3), ("tight curl", 0.12)] {
+        let settings = ConeSettings::<f64> {
+            flip_theta: theta,
+            ..ConeSettings::default()
+        };
+        let mut cone = ConePage::new(settings).unwrap();
+        cone.start_flip();
+        let mut flip = TouchScript::page_turn(WIDTH, HEIGHT, 0, 0, settings.flip_frames);
+        flip.path.clear();
+        let p = play(&mut cone, &flip);
+        summary(&format!("cone flip ({name})"), &p);
+        // The apex lies below the page, so neighbour distances on the render grid change
+        // only to second order in its spacing: measured 1.3e-4 (default) and 6e-4 (tight).
+        let stretch = worst(p.metrics.iter().map(|m| m.max_stretch));
+        assert!(stretch <= 2e-3, "{name}: worst stretch {stretch:.3e}");
+        assert!(!cone.is_animating());
+        // The flip ends turned over, flat on the left.
+        assert!(
+            p.last.iter().all(|q| q[0] <= 1e-9 && q[1].abs() <= 1e-9),
+            "{name}"
+        );
+    }
+}
+
+#[test]
+fn cone_touch_fit_follows_every_reachable_finger() {
+    // Fingers a cone can reach, by construction: the held point carried by a smooth path of
+    // parameters (the flip's, slowed down), fitted from the flat page frame by frame.
+    let settings = ConeSettings::<f64>::default();
+    let held = [WIDTH, 0.2 * HEIGHT];
+    let frames = 120;
+    let path: Vec<[f64; 3]> = (0..frames)
+        .map(|k| {
+            let p = flip_parameters(&settings, f64::from(k) / f64::from(frames - 1));
+            let t = ConeCurl::new(p.theta, p.apex, p.rho).map_point(held[0], held[1]);
+            [t.x, t.z, t.y]
+        })
+        .collect();
+    let script = TouchScript {
+        frames: frames + 1,
+        grab: held,
+        grab_frame: 0,
+        path,
+    };
+    let mut cone = ConePage::new(settings).unwrap();
+    let p = play(&mut cone, &script);
+    summary("cone fit, reachable drag", &p);
+    let gap = worst(p.gaps.iter().flatten().copied());
+    assert!(gap <= settings.fit_tolerance, "worst gap {gap:.3e}");
+    assert_eq!(count(&p, PageStatus::Unreachable), 0);
+}
+
+#[test]
+fn cone_touch_fit_stays_finite_for_unreachable_fingers() {
+    let mut cone = ConePage::<f64>::new(ConeSettings::default()).unwrap();
+    cone.grab([WIDTH, 0.5 * HEIGHT]).unwrap();
+    for finger in [
+        [100.0, 100.0, 100.0],
+        [0.0, 0.0, 0.5 * HEIGHT],
+        [-1e6, 3.0, -1e6],
+        [WIDTH * 0.5, 0.0, 0.5 * HEIGHT],
+    ] {
+        cone.drag(glam::DVec3::from(finger)).unwrap();
+        let step = cone.step().unwrap();
+        let p: ConeParameters<f64> = cone.parameters();
+        assert_eq!(step.status, PageStatus::Unreachable, "{finger:?}");
+        assert!(step.finger_gap.is_some_and(f64::is_finite));
+        assert!(p.theta.is_finite() && p.apex.is_finite() && p.rho.is_finite());
+        assert!(
+            (0.0..=FRAC_PI_2).contains(&p.theta) && (0.0..=core::f64::consts::PI).contains(&p.rho)
+        );
+    }
+    // NaN is refused and changes nothing: the next frame is the one of a twin that never
+    // saw it.
+    let mut twin = cone;
+    assert!(matches!(
+        cone.drag(glam::DVec3::new(f64::NAN, 0.0, 0.0)),
+        Err(PageError::InvalidInput { .. })
+    ));
+    cone.step().unwrap();
+    twin.step().unwrap();
+    assert_eq!(cone.parameters(), twin.parameters());
+}
+
+#[test]
+fn the_same_drag_runs_on_every_model() {
+    let script = TouchScript::parse(PAGE_TURN).unwrap();
+    let mut models = all_models::<f64>();
+    for model in &mut models {
+        let p = play(model.as_mut(), &script);
+        summary(model.name(), &p);
+        let name = model.name();
+        assert_eq!(p.nonfinite, 0, "{name}");
+        assert_eq!(count(&p, PageStatus::Stalled), 0, "{name}");
+        // Every model turns the page: at the end most of it lies left of the spine.
+        let left = p.last.iter().filter(|q| q[0] < 0.0).count() as f64 / p.last.len() as f64;
+        println!(
+            "{name}: {:.0} % of the page left of the spine at the end",
+            100.0 * left
+        );
+        assert!(left >= 0.75, "{name}: only {left:.2} of the page turned");
+    }
+}
+
+#[test]
+fn every_model_refuses_bad_input() {
+    let mut models = all_models::<f32>();
+    for model in &mut models {
+        let name = model.name();
+        for at in [[-1.0, 1.0], [1.0, f32::NAN], [100.0, 1.0]] {
+            assert!(
+                matches!(model.grab(at), Err(PageError::InvalidInput { .. })),
+                "{name}: grab {at:?}"
+            );
+        }
+        model.grab([11.0, 3.0]).unwrap();
+        assert!(matches!(
+            model.drag(glam::Vec3A::new(0.0, f32::INFINITY, 0.0)),
+            Err(PageError::InvalidInput { .. })
+        ));
+        let grid = render_grid();
+        let mut short = vec![glam::Vec3A::ZERO; grid.len() - 1];
+        assert!(matches!(
+            model.sample(grid, &mut short),
+            Err(PageError::SampleCount { .. })
+        ));
+        let step = model.step().unwrap();
+        assert_ne!(step.status, PageStatus::Stalled, "{name}");
+    }
+}
+
+#[test]
+fn every_model_meshes_with_its_back_facing_away() {
+    use folio_geometry::mesh::{Surface, TriMesh};
+    use folio_solvers::page::mesh;
+    let script = TouchScript::parse(PAGE_TURN).unwrap();
+    let mut models = all_models::<f64>();
+    for model in &mut models {
+        // Mid-turn: the page arched over the spine.
+        for frame in 0..70 {
+            script.at(frame).apply(model.as_mut()).unwrap();
+            model.step().unwrap();
+        }
+        let mut out = TriMesh::new();
+        mesh(model.as_ref(), render_grid(), 0.0075, &mut out).unwrap();
+        let name = model.name();
+        let sub = |a: [f32; 3], b: [f32; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+        let (mut front, mut back, mut agree) = (0, 0, 0);
+        for (t, surface) in out.triangles.iter().zip(&out.surfaces) {
+            if !matches!(surface, Surface::PageFront | Surface::PageBack) {
+                continue;
+            }
+            let [a, b, c] = t.map(|k| out.positions[k as usize]);
+            let (e1, e2) = (sub(b, a), sub(c, a));
+            let n = [
+                e1[1] * e2[2] - e1[2] * e2[1],
+                e1[2] * e2[0] - e1[0] * e2[2],
+                e1[0] * e2[1] - e1[1] * e2[0],
+            ];
+            let vn = out.normals[t[0] as usize];
+            if n[0] * vn[0] + n[1] * vn[1] + n[2] * vn[2] > 0.0 {
+                agree += 1;
+            }
+            match surface {
+                Surface::PageFront => front += 1,
+                _ => back += 1,
+            }
+        }
+        println!(
+            "{name}: {front} front and {back} back triangles, {agree} wound with their normals"
+        );
+        assert_eq!(front, back, "{name}");
+        assert!(front > 0, "{name}");
+        // Every face triangle is wound so that its geometric normal agrees with the vertex
+        // normal: front and back both face outwards, as a renderer with culling needs.
+        assert_eq!(agree, front + back, "{name}");
+    }
+}
