@@ -1,0 +1,23 @@
+//! The built-in scenes (`scenes/*.toml`, embedded in the binary).
+
+/// Name and text of every built-in scene; the first is the default.
+pub const SCENES: [(&str, &str); 6] = [
+    ("page-turn", include_str!("../../scenes/page-turn.toml")),
+    ("peek", include_str!("../../scenes/peek.toml")),
+    (
+        "bookmark-flip",
+        include_str!("../../scenes/bookmark-flip.toml"),
+    ),
+    ("paperback", include_str!("../../scenes/paperback.toml")),
+    ("cone-turn", include_str!("../../scenes/cone-turn.toml")),
+    (
+        "mass-spring-turn",
+        include_str!("../../scenes/mass-spring-turn.toml"),
+    ),
+];
+
+/// The text of built-in scene `name`.
+#[must_use]
+pub fn scene(name: &str) -> Option<&'static str> {
+    SCENES.iter().find(|s| s.0 == name).map(|s| s.1)
+}
