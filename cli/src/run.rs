@@ -5,7 +5,7 @@ use alloc::collections::BTreeMap;
 use std::time::Instant;
 
 use folio_geometry::{BookParams, QuadGrid};
-use folio_solvers::book::{Book, BookSettings, Script};
+use folio_solvers::book::{Action, Book, BookSettings, Script};
 use folio_solvers::page::cone::{ConePage, ConeSettings};
 use folio_solvers::page::dog::DogPage;
 use folio_solvers::page::spring::{SpringPage, SpringSettings};
@@ -141,7 +141,14 @@ pub fn run(scene: &Scene, mut progress: impl FnMut(u32, u32)) -> Result<Report, 
     let mut final_pages = None;
     let effects = match (fixtures::kind(name), model) {
         (Some(Kind::Book), _) => {
-            let script = Script::parse(text).map_err(fail)?;
+            let mut script = Script::parse(text).map_err(fail)?;
+            if let Some(k) = &scene.input.get_ref().pages {
+                for e in &mut script.events {
+                    if let Action::Grab { pages, .. } = &mut e.action {
+                        *pages = *k.get_ref();
+                    }
+                }
+            }
             let settings = book_settings(scene);
             let mut book = Book::new(settings).map_err(fail)?;
             let n = frames(scene, script.frames);

@@ -94,6 +94,8 @@ pub struct BookSection {
 pub struct InputSection {
     /// One of [`crate::fixtures::NAMES`].
     pub fixture: Spanned<String>,
+    /// Pages every grab of a book fixture takes (a stack; default: the fixture's own).
+    pub pages: Option<Spanned<u32>>,
 }
 
 /// What a run writes into its output folder.
@@ -205,6 +207,14 @@ impl Scene {
                 );
             }
             Some(_) => {}
+        }
+        if let Some(pages) = &self.input.get_ref().pages {
+            if crate::fixtures::kind(fixture.get_ref()) != Some(crate::fixtures::Kind::Book) {
+                return bad(pages.span(), "input.pages is for book fixtures only");
+            }
+            if *pages.get_ref() == 0 {
+                return bad(pages.span(), "input.pages must be at least 1");
+            }
         }
         if let Some(book) = &self.book {
             if model != ModelKind::Dog {

@@ -120,7 +120,7 @@ fn check_accepts_the_shipped_scenes_and_the_documented_examples() {
 fn malformed_scenes_are_refused_at_their_line_and_column() {
     let dir = scratch("malformed");
     let good = "name = \"x\"\nmodel = \"cone\"\ninput = { fixture = \"page-turn-touch\" }\n";
-    let cases: [(&str, String, &str); 8] = [
+    let cases: [(&str, String, &str); 9] = [
         ("unknown key", format!("{good}colour = 3\n"), "line 4, column 1"),
         ("unknown model", good.replace("\"cone\"", "\"paper\""), "line 2, column 9"),
         ("syntax", format!("{good}frames = \n"), "line 4"),
@@ -132,6 +132,11 @@ fn malformed_scenes_are_refused_at_their_line_and_column() {
             "line 3, column 21",
         ),
         ("unknown fixture", good.replace("page-turn-touch", "nope"), "line 3, column 21"),
+        (
+            "a stack on a touch fixture",
+            good.replace("\"page-turn-touch\" }", "\"page-turn-touch\", pages = 3 }"),
+            "line 3, column 48",
+        ),
         (
             "left pages above pages",
             "name = \"x\"\nmodel = \"dog\"\ninput = { fixture = \"page-turn\" }\n[book]\npages = 10\nleft_pages = 11\n".to_string(),
