@@ -287,39 +287,34 @@ impl<T: Real> Solver<T> {
                         report.linear_residual = refinement.relative_residual;
                     }
                 }
-                if !solved {
-                    if retry == s.damping_retries {
-                        report.status = StepStatus::NumericalFailure;
-                        return Ok(report);
+                let failed = if solved {
+                    if !s.line_search {
+                        w.set_trial(T::ONE);
+                        report.constraint_residual = None;
+                        break;
                     }
-                    retry += 1;
-                    report.damping_retries = retry;
-                    gamma = w.damp(gamma, h);
-                    continue;
-                }
-                if !s.line_search {
-                    w.set_trial(T::ONE);
-                    report.constraint_residual = None;
-                    break;
-                }
-                let search = w.line_search(
-                    model,
-                    h,
-                    e.energy,
-                    s.max_halvings,
-                    s.second_order_correction,
-                    s.merit_slack,
-                )?;
-                report.second_order_corrections += u32::from(search.second_order);
-                report.merit_before = Some(search.before);
-                report.merit_after = search.after;
-                report.halvings += search.halvings;
-                if search.after.is_some() {
-                    report.constraint_residual = Some(max_abs(&w.constraint));
-                    break;
-                }
+                    let search = w.line_search(
+                        model,
+                        h,
+                        e.energy,
+                        s.max_halvings,
+                        s.second_order_correction,
+                        s.merit_slack,
+                    )?;
+                    report.second_order_corrections += u32::from(search.second_order);
+                    report.merit_before = Some(search.before);
+                    report.merit_after = search.after;
+                    report.halvings += search.halvings;
+                    if search.after.is_some() {
+                        report.constraint_residual = Some(max_abs(&w.constraint));
+                        break;
+                    }
+                    StepStatus::LineSearchFailed
+                } else {
+                    StepStatus::NumericalFailure
+                };
                 if retry == s.damping_retries {
-                    report.status = StepStatus::LineSearchFailed;
+                    report.status = failed;
                     return Ok(report);
                 }
                 retry += 1;

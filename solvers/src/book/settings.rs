@@ -175,9 +175,17 @@ impl<T: Real> BookSettings<T> {
     /// resolution. Masses are the page mass spread over the nodes.
     #[must_use]
     pub fn iso_scale(&self) -> f64 {
+        let [across, along] = self.grid_spacing();
+        self.reference_cell_area() / (across * along)
+    }
+
+    /// The page grid's rest spacing `[across, along]` (page units).
+    #[must_use]
+    pub fn grid_spacing(&self) -> [f64; 2] {
         let p = &self.params;
-        let cell =
-            p.page_width * p.page_height() / (self.quads_across as f64 * self.quads_along as f64);
-        self.reference_cell_area() / cell
+        [
+            p.page_width / self.quads_across as f64,
+            p.page_height() / self.quads_along as f64,
+        ]
     }
 }

@@ -267,10 +267,7 @@ impl<T: Real> Book<T> {
             x[n.cover_end(false)] = at(ends[0]);
             x[n.cover_end(true)] = at(ends[1]);
         }
-        let spacing = [
-            p.page_width / settings.quads_across as f64,
-            p.page_height() / settings.quads_along as f64,
-        ];
+        let spacing = settings.grid_spacing();
         let edges = grid
             .edges()
             .into_iter()
@@ -593,11 +590,7 @@ impl<T: Real> Book<T> {
     /// The page grid's rest spacing `[across, along]` (page units).
     #[must_use]
     pub fn grid_spacing(&self) -> [f64; 2] {
-        let p = &self.layout.params;
-        [
-            p.page_width / self.settings.quads_across as f64,
-            p.page_height() / self.settings.quads_along as f64,
-        ]
+        self.settings.grid_spacing()
     }
 
     /// Makes the top `pages` pages of the block on `side` the active page, laid on the block;
