@@ -20,6 +20,8 @@ pub struct Play {
     pub dog_max: f64,
     /// Frames with an active page.
     pub active_frames: usize,
+    /// Pages left, right and held at the end.
+    pub final_pages: [u32; 3],
 }
 
 /// Plays `script` on a new book with `settings`, timing each step.
@@ -46,6 +48,8 @@ pub fn play(settings: BookSettings<f64>, script: &Script) -> Play {
             out.dog_max = out.dog_max.max(book.dog_residual().unwrap_or(0.0));
         }
     }
+    let c = book.counts();
+    out.final_pages = [c.left, c.right, c.active];
     let n = out.active_frames.max(1) as f64;
     out.max_stretch_mean = max_sum / n;
     out.rms_stretch_mean = rms_sum / n;

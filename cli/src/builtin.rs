@@ -1,13 +1,14 @@
 //! The built-in scenes (`scenes/*.toml`, embedded in the binary).
 
 /// Name and text of every built-in scene; the first is the default.
-pub const SCENES: [(&str, &str); 6] = [
+pub const SCENES: [(&str, &str); 7] = [
     ("page-turn", include_str!("../../scenes/page-turn.toml")),
     ("peek", include_str!("../../scenes/peek.toml")),
     (
         "bookmark-flip",
         include_str!("../../scenes/bookmark-flip.toml"),
     ),
+    ("stack", include_str!("../../scenes/stack.toml")),
     ("paperback", include_str!("../../scenes/paperback.toml")),
     ("cone-turn", include_str!("../../scenes/cone-turn.toml")),
     (

@@ -14,9 +14,14 @@
 extern crate alloc;
 
 mod builtin;
+mod events;
+mod export;
 mod fixtures;
+mod outputs;
+mod render;
 mod run;
 mod scene;
+mod timeline;
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -121,14 +126,25 @@ fn run_named(target: &str, out: Option<PathBuf>) -> ExitCode {
     // The bar appears once a run has lasted a second, and only on a terminal.
     let terminal = std::io::stdout().is_terminal();
     let mut shown = false;
-    let report = run::run(&scene, |frame, frames| {
-        if !shown && terminal && started.elapsed().as_secs_f64() > 1.0 {
-            bar.set_draw_target(ProgressDrawTarget::stderr());
-            shown = true;
+    let mut outputs = match outputs::Outputs::new(&scene) {
+        Ok(o) => o,
+        Err(e) => {
+            eprintln!("{origin}: {e}");
+            return ExitCode::FAILURE;
         }
-        bar.set_length(u64::from(frames));
-        bar.set_position(u64::from(frame));
-    });
+    };
+    let report = run::run(
+        &scene,
+        |frame, frames| {
+            if !shown && terminal && started.elapsed().as_secs_f64() > 1.0 {
+                bar.set_draw_target(ProgressDrawTarget::stderr());
+                shown = true;
+            }
+            bar.set_length(u64::from(frames));
+            bar.set_position(u64::from(frame));
+        },
+        |frame, frames, shape| outputs.observe(frame, frames, shape),
+    );
     bar.finish_and_clear();
     let report = match report {
         Ok(r) => r,
@@ -137,13 +153,36 @@ fn run_named(target: &str, out: Option<PathBuf>) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
+    let mut report = report;
+    if let Some(sheet) = outputs.sheet() {
+        report.summary.page_coverage = Some(sheet.coverage());
+        report.summary.paper_coverage = Some(sheet.paper_coverage());
+    }
     if scene.output.report {
         if let Err(e) = write_report(&out, &report) {
             eprintln!("{}: {e}", out.display());
             return ExitCode::FAILURE;
         }
     }
+    let written = match outputs.write(&out, &report) {
+        Ok(w) => w,
+        Err(e) => {
+            eprintln!("{}: {e}", out.display());
+            return ExitCode::FAILURE;
+        }
+    };
     print_summary(&report, &out, started.elapsed().as_secs_f64());
+    if let (Some(page), Some(paper)) = (report.summary.page_coverage, report.summary.paper_coverage)
+    {
+        println!(
+            "  contact sheet    {:.1} % page, {:.1} % paper",
+            100.0 * page,
+            100.0 * paper
+        );
+    }
+    for (file, what) in written {
+        println!("  wrote            {} ({what})", file.display());
+    }
     let unmet = report.unmet(&scene.expect);
     if unmet.is_empty() {
         println!("  expectations     met");
@@ -194,6 +233,16 @@ fn print_summary(report: &Report, out: &Path, seconds: f64) {
             s.effects.join(", ")
         }
     );
+    if let (Some(dofs), Some(rows), Some(terms), Some(tests)) = (
+        s.dofs_max,
+        s.constraint_rows_max,
+        s.terms_max,
+        s.contact_tests_total,
+    ) {
+        println!(
+            "  work             at most {dofs} unknowns, {rows} rows, {terms} terms; {tests} collision tests"
+        );
+    }
     if let Some([left, right, held]) = s.final_pages {
         println!("  pages at the end left {left}, right {right}, held {held}");
     }

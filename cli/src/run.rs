@@ -4,12 +4,15 @@
 use alloc::collections::BTreeMap;
 use std::time::Instant;
 
+use folio_geometry::mesh::TriMesh;
 use folio_geometry::{BookParams, QuadGrid};
-use folio_solvers::book::{Action, Book, BookSettings, Script};
+use folio_solvers::book::{Action, Book, BookSettings, Effects, Script};
 use folio_solvers::page::cone::{ConePage, ConeSettings};
 use folio_solvers::page::dog::DogPage;
 use folio_solvers::page::spring::{SpringPage, SpringSettings};
 use folio_solvers::page::{PageModel, PageStatus, TouchScript, frame_metrics};
+
+use crate::events;
 use serde::Serialize;
 
 use crate::fixtures::{self, Kind};
@@ -35,6 +38,16 @@ pub struct FrameRecord {
     pub dog_residual: Option<f64>,
     /// Deepest penetration of the active page into a block (DOG book; page units).
     pub penetration: Option<f64>,
+    /// Unknowns of the step's KKT system (DOG book).
+    pub dofs: Option<usize>,
+    /// Constraint rows of the step's KKT system (DOG book).
+    pub constraint_rows: Option<usize>,
+    /// Potential and constraint terms of the step (DOG book).
+    pub terms: Option<usize>,
+    /// Point-obstacle collision tests of the step (DOG book).
+    pub contact_tests: Option<usize>,
+    /// A finger-bookmarking snapshot was taken (DOG book).
+    pub snapshot: Option<bool>,
     /// How the step went.
     pub status: String,
     /// Some coordinate is not finite.
@@ -63,7 +76,22 @@ pub struct Summary {
     /// Frames per step status.
     pub status_counts: BTreeMap<String, usize>,
     /// What the model simulated.
-    pub effects: Vec<&'static str>,
+    pub effects: Vec<String>,
+    /// Largest KKT system of a step: unknowns (DOG book).
+    pub dofs_max: Option<usize>,
+    /// Largest KKT system of a step: constraint rows (DOG book).
+    pub constraint_rows_max: Option<usize>,
+    /// Most terms in a step (DOG book).
+    pub terms_max: Option<usize>,
+    /// Collision tests over the run (DOG book).
+    pub contact_tests_total: Option<usize>,
+    /// Finger-bookmarking snapshots over the run (DOG book).
+    pub snapshots_total: Option<usize>,
+    /// Fraction of the contact sheet's pixels that show the active page (and any page
+    /// model's page), when a sheet was drawn.
+    pub page_coverage: Option<f64>,
+    /// Fraction of the contact sheet's pixels that show paper (pages and block tops).
+    pub paper_coverage: Option<f64>,
     /// Pages in the left block, the right block and the grip at the end (DOG book).
     pub final_pages: Option<[u32; 3]>,
 }
@@ -97,7 +125,7 @@ fn fail(e: impl core::fmt::Display) -> RunError {
     RunError(e.to_string())
 }
 
-/// The book settings of a DOG scene.
+/// The book settings of a DOG scene: its book, effects, weights and solver settings.
 fn book_settings(scene: &Scene) -> BookSettings<f64> {
     let mut s = BookSettings::default();
     if let Some(book) = &scene.book {
@@ -110,17 +138,60 @@ fn book_settings(scene: &Scene) -> BookSettings<f64> {
         if let Some(v) = &b.left_pages {
             p.left_pages = *v.get_ref();
         }
-        if let Some(v) = &b.page_width {
-            p.page_width = *v.get_ref();
-        }
-        if let Some(v) = &b.thickness {
-            p.page_thickness = *v.get_ref();
-        }
-        if let Some(v) = b.cover {
-            p.cover = v;
-        }
+        set(&mut p.page_width, b.page_width.as_ref());
+        set(&mut p.page_thickness, b.thickness.as_ref());
+    }
+    s.params.cover = scene.has_effect("cover");
+    s.effects = Effects::NONE;
+    for name in scene.effect_names() {
+        // `cover` is geometry (above); the scene check refused every unknown name.
+        s.effects.enable(&name);
+    }
+    if let Some(w) = &scene.weights {
+        let w = w.get_ref();
+        set(&mut s.weights.bend_page, w.bend_page.as_ref());
+        set(&mut s.weights.bend_blocks, w.bend_blocks.as_ref());
+        set(&mut s.weights.glue, w.glue.as_ref());
+        set(&mut s.weights.iso_page, w.iso_page.as_ref());
+        set(&mut s.weights.pull, w.pull.as_ref());
+    }
+    if let Some(solver) = &scene.solver {
+        let v = solver.get_ref();
+        set(&mut s.solver.time_step, v.time_step.as_ref());
+        set(
+            &mut s.solver.newton_iterations,
+            v.newton_iterations.as_ref(),
+        );
+        set(&mut s.max_corrections, v.max_corrections.as_ref());
     }
     s
+}
+
+/// The mass-spring settings of a scene: seed 003's experiment on its fixture, else the
+/// defaults; its effects (gravity, the table) and solver settings.
+fn spring_settings(scene: &Scene, seed: bool) -> SpringSettings<f64> {
+    let mut s = if seed {
+        SpringSettings::seed_experiment()
+    } else {
+        SpringSettings::default()
+    };
+    if !scene.has_effect("gravity") {
+        s.particle_weight = 0.0;
+    }
+    s.floor = scene.has_effect("collisions");
+    if let Some(solver) = &scene.solver {
+        let v = solver.get_ref();
+        set(&mut s.time_step, v.time_step.as_ref());
+        set(&mut s.substeps, v.substeps.as_ref());
+    }
+    s
+}
+
+/// Overwrites `field` with the scene's value, if it gives one.
+fn set<V: Copy>(field: &mut V, value: Option<&toml::Spanned<V>>) {
+    if let Some(v) = value {
+        *field = *v.get_ref();
+    }
 }
 
 /// The frames to run: the scene's, else the input's.
@@ -128,133 +199,201 @@ fn frames(scene: &Scene, input: u32) -> u32 {
     scene.frames.as_ref().map_or(input, |f| *f.get_ref())
 }
 
-/// Runs `scene`, calling `progress(frame, frames)` after every frame.
+/// What a frame shows, for the outputs that draw it.
+#[derive(Clone, Copy)]
+pub enum Shape<'a> {
+    /// The whole book.
+    Book(&'a Book<f64>),
+    /// A page model's page.
+    Page(&'a dyn PageModel<f64>),
+}
+
+impl Shape<'_> {
+    /// The active page's thickness (page units; 0 without one): a stack of $k$ pages is
+    /// $k$ pages thick.
+    #[must_use]
+    pub fn thickness(&self) -> f64 {
+        match self {
+            Self::Book(book) => book.active_thickness(),
+            Self::Page(_) => BookParams::default().page_thickness,
+        }
+    }
+
+    /// Appends the frame's render mesh to `out`.
+    ///
+    /// # Errors
+    /// A mesh the mesher refuses (a non-finite or degenerate surface).
+    pub fn mesh(&self, out: &mut TriMesh) -> Result<(), RunError> {
+        match self {
+            Self::Book(book) => book.mesh(out).map_err(fail),
+            Self::Page(page) => {
+                let grid = QuadGrid::new(RENDER_QUADS.0, RENDER_QUADS.1)
+                    .ok_or_else(|| fail("render grid"))?;
+                let thickness = BookParams::default().page_thickness;
+                folio_solvers::page::mesh(*page, grid, thickness, out).map_err(fail)
+            }
+        }
+    }
+}
+
+/// The input of a scene as a touch script, when it is not a book fixture: a touch fixture
+/// or the scene's timed events.
+fn touch_input(scene: &Scene) -> Result<Option<(TouchScript, bool)>, RunError> {
+    let input = scene.input.get_ref();
+    if let Some(events) = &input.events {
+        let frames = scene.frames.as_ref().map(|f| *f.get_ref());
+        let script = events::touch_script(events.get_ref(), frames).map_err(|e| fail(e.1))?;
+        return Ok(Some((script, false)));
+    }
+    let name = input
+        .fixture
+        .as_ref()
+        .ok_or_else(|| fail("no input"))?
+        .get_ref();
+    let text = fixtures::text(name).ok_or_else(|| fail("unknown fixture"))?;
+    match fixtures::kind(name) {
+        Some(Kind::Touch) => Ok(Some((
+            TouchScript::parse(text).map_err(fail)?,
+            name == "seed003-turn",
+        ))),
+        _ => Ok(None),
+    }
+}
+
+/// Runs `scene`, calling `progress(frame, frames)` and `observe(frame, frames, shape)`
+/// after every frame.
 ///
 /// # Errors
 /// A model or input the scene describes but that refuses to start (settings the model
 /// rejects), or a step error.
-pub fn run(scene: &Scene, mut progress: impl FnMut(u32, u32)) -> Result<Report, RunError> {
-    let name = scene.input.get_ref().fixture.get_ref();
-    let text = fixtures::text(name).ok_or_else(|| fail("unknown fixture"))?;
+pub fn run(
+    scene: &Scene,
+    mut progress: impl FnMut(u32, u32),
+    mut observe: impl FnMut(u32, u32, Shape<'_>),
+) -> Result<Report, RunError> {
     let model = *scene.model.get_ref();
     let mut records = Vec::new();
     let mut final_pages = None;
-    let effects = match (fixtures::kind(name), model) {
-        (Some(Kind::Book), _) => {
-            let mut script = Script::parse(text).map_err(fail)?;
-            if let Some(k) = &scene.input.get_ref().pages {
-                for e in &mut script.events {
-                    if let Action::Grab { pages, .. } = &mut e.action {
-                        *pages = *k.get_ref();
-                    }
+    if let Some((script, seed)) = touch_input(scene)? {
+        // The DOG page is kept by type, for its book's page counts at the end.
+        let mut dog = None;
+        let mut other: Option<Box<dyn PageModel<f64>>> = None;
+        match model {
+            ModelKind::Cone => {
+                let mut s = ConeSettings::default();
+                if seed {
+                    (s.width, s.height) = (25.0, 25.0);
                 }
+                other = Some(Box::new(ConePage::new(s).map_err(fail)?));
             }
-            let settings = book_settings(scene);
-            let mut book = Book::new(settings).map_err(fail)?;
-            let n = frames(scene, script.frames);
-            for frame in 0..n {
-                for e in script.events_at(frame) {
-                    book.apply(script.camera, script.forward, e.action)
-                        .map_err(fail)?;
+            ModelKind::MassSpring => {
+                let s = spring_settings(scene, seed);
+                other = Some(Box::new(SpringPage::new(s).map_err(fail)?));
+            }
+            ModelKind::Dog => dog = Some(DogPage::new(book_settings(scene)).map_err(fail)?),
+        }
+        let page: &mut dyn PageModel<f64> = match (&mut dog, &mut other) {
+            (Some(d), _) => d,
+            (None, Some(o)) => o.as_mut(),
+            (None, None) => return Err(fail("no page model")),
+        };
+        let grid = QuadGrid::new(RENDER_QUADS.0, RENDER_QUADS.1).ok_or_else(|| fail("grid"))?;
+        let mut samples = vec![glam_zero(); grid.len()];
+        let n = frames(scene, script.frames);
+        for frame in 0..n {
+            script.at(frame).apply(page).map_err(fail)?;
+            let t = Instant::now();
+            let step = page.step().map_err(fail)?;
+            let step_ms = t.elapsed().as_secs_f64() * 1e3;
+            page.sample(grid, &mut samples).map_err(fail)?;
+            let m = frame_metrics(grid, page.size(), &samples).map_err(fail)?;
+            records.push(FrameRecord {
+                frame,
+                step_ms,
+                max_stretch: Some(m.max_stretch),
+                rmse_stretch: Some(m.rmse_stretch),
+                angle_defect: Some(m.max_angle_defect),
+                dog_residual: None,
+                penetration: None,
+                dofs: None,
+                constraint_rows: None,
+                terms: None,
+                contact_tests: None,
+                snapshot: None,
+                status: match step.status {
+                    PageStatus::Moved => "Moved",
+                    PageStatus::Unreachable => "Unreachable",
+                    PageStatus::Stalled => "Stalled",
                 }
-                let t = Instant::now();
-                let report = book.step().map_err(fail)?;
-                let step_ms = t.elapsed().as_secs_f64() * 1e3;
-                let stretch = book.stretch();
-                let finite = book
-                    .state()
-                    .x
-                    .iter()
-                    .chain(&book.state().v)
-                    .all(|p| p.is_finite());
-                records.push(FrameRecord {
-                    frame,
-                    step_ms,
-                    max_stretch: stretch.map(|s| s.0),
-                    rmse_stretch: stretch.map(|s| s.1),
-                    angle_defect: None,
-                    dog_residual: book.dog_residual(),
-                    penetration: book.penetration(),
-                    status: format!("{:?}", report.solver.status),
-                    nonfinite: !finite,
-                });
-                progress(frame + 1, n);
-            }
-            let mut effects = vec![
-                "page blocks",
-                "gravity",
-                "glue",
-                "collisions",
-                "bookmarking",
-            ];
-            if settings.params.cover {
-                effects.push("cover");
-            }
-            let c = book.counts();
+                .to_string(),
+                nonfinite: !samples.iter().all(|p| p.is_finite()),
+            });
+            observe(frame, n, Shape::Page(page));
+            progress(frame + 1, n);
+        }
+        if let Some(d) = &dog {
+            let c = d.book().counts();
             final_pages = Some([c.left, c.right, c.active]);
-            effects
         }
-        (Some(Kind::Touch), _) => {
-            let script = TouchScript::parse(text).map_err(fail)?;
-            let seed = name == "seed003-turn";
-            let mut page: Box<dyn PageModel<f64>> = match model {
-                ModelKind::Cone => {
-                    let mut s = ConeSettings::default();
-                    if seed {
-                        (s.width, s.height) = (25.0, 25.0);
-                    }
-                    Box::new(ConePage::new(s).map_err(fail)?)
+    } else {
+        let name = scene
+            .input
+            .get_ref()
+            .fixture
+            .as_ref()
+            .ok_or_else(|| fail("no input"))?;
+        let text = fixtures::text(name.get_ref()).ok_or_else(|| fail("unknown fixture"))?;
+        let mut script = Script::parse(text).map_err(fail)?;
+        if let Some(k) = &scene.input.get_ref().pages {
+            for e in &mut script.events {
+                if let Action::Grab { pages, .. } = &mut e.action {
+                    *pages = *k.get_ref();
                 }
-                ModelKind::MassSpring => Box::new(
-                    SpringPage::new(if seed {
-                        SpringSettings::seed_experiment()
-                    } else {
-                        SpringSettings::default()
-                    })
-                    .map_err(fail)?,
-                ),
-                ModelKind::Dog => Box::new(DogPage::new(book_settings(scene)).map_err(fail)?),
-            };
-            let grid = QuadGrid::new(RENDER_QUADS.0, RENDER_QUADS.1).ok_or_else(|| fail("grid"))?;
-            let mut samples = vec![glam_zero(); grid.len()];
-            let n = frames(scene, script.frames);
-            for frame in 0..n {
-                script.at(frame).apply(page.as_mut()).map_err(fail)?;
-                let t = Instant::now();
-                let step = page.step().map_err(fail)?;
-                let step_ms = t.elapsed().as_secs_f64() * 1e3;
-                page.sample(grid, &mut samples).map_err(fail)?;
-                let m = frame_metrics(grid, page.size(), &samples).map_err(fail)?;
-                records.push(FrameRecord {
-                    frame,
-                    step_ms,
-                    max_stretch: Some(m.max_stretch),
-                    rmse_stretch: Some(m.rmse_stretch),
-                    angle_defect: Some(m.max_angle_defect),
-                    dog_residual: None,
-                    penetration: None,
-                    status: match step.status {
-                        PageStatus::Moved => "Moved",
-                        PageStatus::Unreachable => "Unreachable",
-                        PageStatus::Stalled => "Stalled",
-                    }
-                    .to_string(),
-                    nonfinite: !samples.iter().all(|p| p.is_finite()),
-                });
-                progress(frame + 1, n);
-            }
-            match model {
-                ModelKind::Cone => vec![],
-                ModelKind::MassSpring => vec!["gravity", "table"],
-                ModelKind::Dog => vec!["page blocks", "gravity", "glue", "collisions", "cover"],
             }
         }
-        (None, _) => return Err(fail("unknown fixture")),
-    };
+        let mut book = Book::new(book_settings(scene)).map_err(fail)?;
+        let n = frames(scene, script.frames);
+        for frame in 0..n {
+            for e in script.events_at(frame) {
+                book.apply(script.camera, script.forward, e.action)
+                    .map_err(fail)?;
+            }
+            let t = Instant::now();
+            let report = book.step().map_err(fail)?;
+            let step_ms = t.elapsed().as_secs_f64() * 1e3;
+            let stretch = book.stretch();
+            let finite = book
+                .state()
+                .x
+                .iter()
+                .chain(&book.state().v)
+                .all(|p| p.is_finite());
+            records.push(FrameRecord {
+                frame,
+                step_ms,
+                max_stretch: stretch.map(|s| s.0),
+                rmse_stretch: stretch.map(|s| s.1),
+                angle_defect: None,
+                dog_residual: book.dog_residual(),
+                penetration: book.penetration(),
+                dofs: Some(report.dofs),
+                constraint_rows: Some(report.constraint_rows),
+                terms: Some(report.census.potentials + report.census.constraints),
+                contact_tests: Some(report.contacts.tested),
+                snapshot: Some(report.snapshot),
+                status: format!("{:?}", report.solver.status),
+                nonfinite: !finite,
+            });
+            observe(frame, n, Shape::Book(&book));
+            progress(frame + 1, n);
+        }
+        let c = book.counts();
+        final_pages = Some([c.left, c.right, c.active]);
+    }
     Ok(Report {
         scene: scene.name.clone(),
         model: model.name(),
-        summary: summarize(&records, effects, final_pages),
+        summary: summarize(&records, scene.effect_names(), final_pages),
         frames: records,
     })
 }
@@ -274,7 +413,7 @@ fn quantile(v: &[f64], q: f64) -> f64 {
 
 fn summarize(
     records: &[FrameRecord],
-    effects: Vec<&'static str>,
+    effects: Vec<String>,
     final_pages: Option<[u32; 3]>,
 ) -> Summary {
     let steps: Vec<f64> = records.iter().map(|r| r.step_ms).collect();
@@ -298,6 +437,13 @@ fn summarize(
         nonfinite_frames: records.iter().filter(|r| r.nonfinite).count(),
         status_counts,
         effects,
+        dofs_max: records.iter().filter_map(|r| r.dofs).max(),
+        constraint_rows_max: records.iter().filter_map(|r| r.constraint_rows).max(),
+        terms_max: records.iter().filter_map(|r| r.terms).max(),
+        contact_tests_total: records.iter().map(|r| r.contact_tests).sum(),
+        page_coverage: None,
+        paper_coverage: None,
+        snapshots_total: records.iter().map(|r| r.snapshot.map(usize::from)).sum(),
         final_pages,
     }
 }

@@ -18,13 +18,21 @@ pub struct Scene {
     pub model: Spanned<ModelKind>,
     /// Frames to run (60 per second); default: the input's own length.
     pub frames: Option<Spanned<u32>>,
+    /// The effects to simulate (default: every effect the model has; see
+    /// [`ModelKind::effects`]). An effect left out contributes no term and no work.
+    pub effects: Option<Spanned<Vec<Spanned<String>>>>,
     /// The book around a DOG page (`model = "dog"` only).
     pub book: Option<Spanned<BookSection>>,
-    /// The recorded input.
+    /// Potential weights of the DOG book (`model = "dog"` only).
+    pub weights: Option<Spanned<WeightsSection>>,
+    /// Time step and solver settings.
+    pub solver: Option<Spanned<SolverSection>>,
+    /// The input: a recorded fixture or timed events.
     pub input: Spanned<InputSection>,
     /// What `folio run` writes.
     #[serde(default)]
     pub output: OutputSection,
+
     /// What the run must show; `folio run` fails when it does not.
     #[serde(default)]
     pub expect: Expect,
@@ -60,6 +68,17 @@ pub enum ModelKind {
     MassSpring,
 }
 
+/// Every effect a scene may name, in the order reports list them.
+pub const EFFECTS: [&str; 7] = [
+    "gravity",
+    "glue",
+    "collisions",
+    "cover",
+    "blocks",
+    "bookmarking",
+    "tearing",
+];
+
 impl ModelKind {
     /// The name used in scene files and reports.
     #[must_use]
@@ -68,6 +87,23 @@ impl ModelKind {
             Self::Dog => "dog",
             Self::Cone => "cone",
             Self::MassSpring => "mass-spring",
+        }
+    }
+
+    /// The effects the model can simulate (its default set).
+    #[must_use]
+    pub fn effects(self) -> &'static [&'static str] {
+        match self {
+            Self::Dog => &[
+                "gravity",
+                "glue",
+                "collisions",
+                "cover",
+                "blocks",
+                "bookmarking",
+            ],
+            Self::Cone => &[],
+            Self::MassSpring => &["gravity", "collisions"],
         }
     }
 }
@@ -84,32 +120,115 @@ pub struct BookSection {
     pub page_width: Option<Spanned<f64>>,
     /// Paper thickness (page units).
     pub thickness: Option<Spanned<f64>>,
-    /// A hard cover.
-    pub cover: Option<bool>,
 }
 
-/// The input of a scene: a named recorded fixture.
+/// The DOG book's potential weights (seed `000_…` eq. 9-14); omitted keys keep the seed's.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WeightsSection {
+    /// DOG-Laplacian bending of the page (120).
+    pub bend_page: Option<Spanned<f64>>,
+    /// Curve bending of the blocks (200).
+    pub bend_blocks: Option<Spanned<f64>>,
+    /// Binding glue (600).
+    pub glue: Option<Spanned<f64>>,
+    /// Soft isometry of the page (4000 at the seed's grid).
+    pub iso_page: Option<Spanned<f64>>,
+    /// The grab pull (400).
+    pub pull: Option<Spanned<f64>>,
+}
+
+/// Time step and solver settings; omitted keys keep the model's defaults.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSection {
+    /// Time step (seconds; DOG and mass-spring).
+    pub time_step: Option<Spanned<f64>>,
+    /// Newton iterations per step (DOG; the seed's one).
+    pub newton_iterations: Option<Spanned<u32>>,
+    /// Constraint projection iterations after a step (DOG; 0 is the seed's plain step).
+    pub max_corrections: Option<Spanned<u32>>,
+    /// Substeps per frame (mass-spring).
+    pub substeps: Option<Spanned<u32>>,
+}
+
+/// The input of a scene: a named recorded fixture, or timed events.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct InputSection {
     /// One of [`crate::fixtures::NAMES`].
-    pub fixture: Spanned<String>,
+    pub fixture: Option<Spanned<String>>,
     /// Pages every grab of a book fixture takes (a stack; default: the fixture's own).
     pub pages: Option<Spanned<u32>>,
+    /// Timed events: one gesture (a grab, drags, a release) in page coordinates.
+    pub events: Option<Spanned<Vec<Spanned<EventSpec>>>>,
+}
+
+/// One timed input event (`[[input.events]]`): when (`frame` or `time`) and what (`grab`,
+/// `drag` or `release`).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EventSpec {
+    /// The frame (60 per second) before whose step the event applies.
+    pub frame: Option<Spanned<u32>>,
+    /// The same in seconds (rounded to the nearest frame).
+    pub time: Option<Spanned<f64>>,
+    /// Grab the page at material point `[u, v]` (page units: across from the spine, along
+    /// it) of the right page.
+    pub grab: Option<Spanned<[f64; 2]>>,
+    /// The finger reaches `[x, y, z]` (page frame: x across the book from the spine, y up,
+    /// z along the spine) at this frame, moving in a straight line from where it was.
+    pub drag: Option<Spanned<[f64; 3]>>,
+    /// Let go (`release = true`).
+    pub release: Option<Spanned<bool>>,
 }
 
 /// What a run writes into its output folder.
-#[derive(Clone, Copy, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OutputSection {
     /// Write `report.json`.
     #[serde(default = "yes")]
     pub report: bool,
+    /// Write `contact_sheet.png`.
+    #[serde(default = "yes")]
+    pub contact_sheet: bool,
+    /// Tiles on the contact sheet, spread evenly over the run (1 to 256; default 16).
+    pub sheet_tiles: Option<Spanned<u32>>,
+    /// Write `animation.glb`.
+    #[serde(default = "yes")]
+    pub animation: bool,
+    /// Frames between two frames of the animation (1 to 1000; default 5).
+    pub animation_every: Option<Spanned<u32>>,
+    /// Write `timeline.svg`.
+    #[serde(default = "yes")]
+    pub timeline: bool,
 }
 
 impl Default for OutputSection {
     fn default() -> Self {
-        Self { report: true }
+        Self {
+            report: true,
+            contact_sheet: true,
+            sheet_tiles: None,
+            animation: true,
+            animation_every: None,
+            timeline: true,
+        }
+    }
+}
+
+impl OutputSection {
+    /// Tiles on the contact sheet.
+    #[must_use]
+    pub fn tiles(&self) -> u32 {
+        self.sheet_tiles.as_ref().map_or(16, |v| *v.get_ref())
+    }
+
+    /// Frames between two animation frames.
+    #[must_use]
+    pub fn every(&self) -> u32 {
+        self.animation_every.as_ref().map_or(5, |v| *v.get_ref())
     }
 }
 
@@ -188,32 +307,21 @@ impl Scene {
             }
         }
         let model = *self.model.get_ref();
-        let fixture = self.input.get_ref().fixture.clone();
-        match crate::fixtures::kind(fixture.get_ref()) {
-            None => {
-                let names = crate::fixtures::NAMES.join(", ");
-                return bad(fixture.span(), &format!("unknown fixture; known: {names}"));
+        self.check_input(text, model)?;
+        self.check_effects(text, model)?;
+        self.check_settings(text, model)?;
+        let o = &self.output;
+        if let Some(v) = &o.sheet_tiles {
+            if !(1..=256).contains(v.get_ref()) {
+                return bad(v.span(), "output.sheet_tiles must be between 1 and 256");
             }
-            Some(crate::fixtures::Kind::Book) if model != ModelKind::Dog => {
-                return bad(
-                    fixture.span(),
-                    "a book fixture (camera rays on the whole book) needs model = \"dog\"",
-                );
-            }
-            Some(_) if fixture.get_ref() == "seed003-turn" && model == ModelKind::Dog => {
-                return bad(
-                    fixture.span(),
-                    "seed003-turn is on seed 003's 25 x 25 page; the DOG book's page is 12 wide",
-                );
-            }
-            Some(_) => {}
         }
-        if let Some(pages) = &self.input.get_ref().pages {
-            if crate::fixtures::kind(fixture.get_ref()) != Some(crate::fixtures::Kind::Book) {
-                return bad(pages.span(), "input.pages is for book fixtures only");
-            }
-            if *pages.get_ref() == 0 {
-                return bad(pages.span(), "input.pages must be at least 1");
+        if let Some(v) = &o.animation_every {
+            if !(1..=1000).contains(v.get_ref()) {
+                return bad(
+                    v.span(),
+                    "output.animation_every must be between 1 and 1000",
+                );
             }
         }
         if let Some(book) = &self.book {
@@ -239,6 +347,188 @@ impl Scene {
                 if !(x.is_finite() && x > 0.0) {
                     return bad(v.span(), "must be finite and > 0");
                 }
+            }
+        }
+        Ok(())
+    }
+
+    /// The page size `[width, height]` (page units): every model's page is
+    /// $W \times W\sqrt 2$, $W$ = `book.page_width` (default 12).
+    #[must_use]
+    pub fn page_size(&self) -> [f64; 2] {
+        let w = self
+            .book
+            .as_ref()
+            .and_then(|b| b.get_ref().page_width.as_ref())
+            .map_or(12.0, |w| *w.get_ref());
+        [w, w * core::f64::consts::SQRT_2]
+    }
+
+    /// The effects the run simulates: the scene's list, else every effect of the model.
+    #[must_use]
+    pub fn effect_names(&self) -> Vec<String> {
+        match &self.effects {
+            Some(list) => list.get_ref().iter().map(|e| e.get_ref().clone()).collect(),
+            None => self
+                .model
+                .get_ref()
+                .effects()
+                .iter()
+                .map(|e| (*e).to_string())
+                .collect(),
+        }
+    }
+
+    /// `true` when the run simulates `effect`.
+    #[must_use]
+    pub fn has_effect(&self, effect: &str) -> bool {
+        self.effect_names().iter().any(|e| e == effect)
+    }
+
+    fn check_effects(&self, text: &str, model: ModelKind) -> Result<(), SceneError> {
+        let Some(list) = &self.effects else {
+            return Ok(());
+        };
+        let mut seen: Vec<&str> = Vec::new();
+        for e in list.get_ref() {
+            let name = e.get_ref().as_str();
+            let message = if !EFFECTS.contains(&name) {
+                format!("unknown effect `{name}`; known: {}", EFFECTS.join(", "))
+            } else if name == "tearing" {
+                "the tearing effect is not available yet".to_string()
+            } else if !model.effects().contains(&name) {
+                let has = model.effects();
+                format!(
+                    "the {} model does not simulate `{name}` (it has: {})",
+                    model.name(),
+                    if has.is_empty() {
+                        "none".to_string()
+                    } else {
+                        has.join(", ")
+                    }
+                )
+            } else if seen.contains(&name) {
+                format!("effect `{name}` named twice")
+            } else if name == "glue" && !self.has_effect("blocks") {
+                "`glue` joins the two blocks: it needs `blocks`".to_string()
+            } else {
+                seen.push(name);
+                continue;
+            };
+            return Err(SceneError::at(text, Some(e.span()), message));
+        }
+        Ok(())
+    }
+
+    fn check_settings(&self, text: &str, model: ModelKind) -> Result<(), SceneError> {
+        let bad =
+            |span: Range<usize>, message: &str| Err(SceneError::at(text, Some(span), message));
+        if let Some(w) = &self.weights {
+            if model != ModelKind::Dog {
+                return bad(w.span(), "[weights] is for model = \"dog\" only");
+            }
+            let w = w.get_ref();
+            let all = [&w.bend_page, &w.bend_blocks, &w.glue, &w.iso_page, &w.pull];
+            for v in all.into_iter().flatten() {
+                if !(v.get_ref().is_finite() && *v.get_ref() >= 0.0 && *v.get_ref() <= 1e9) {
+                    return bad(v.span(), "a weight must be in [0, 1e9]");
+                }
+            }
+        }
+        let Some(section) = &self.solver else {
+            return Ok(());
+        };
+        if model == ModelKind::Cone {
+            return bad(
+                section.span(),
+                "[solver] is for the dog and mass-spring models",
+            );
+        }
+        let s = section.get_ref();
+        if let Some(h) = &s.time_step {
+            if !(h.get_ref().is_finite() && *h.get_ref() > 0.0 && *h.get_ref() <= 0.1) {
+                return bad(h.span(), "time_step must be in (0, 0.1] seconds");
+            }
+        }
+        let dog_only = [
+            ("newton_iterations", &s.newton_iterations, 1..=20),
+            ("max_corrections", &s.max_corrections, 0..=50),
+        ];
+        for (name, v, range) in dog_only {
+            let Some(v) = v else { continue };
+            if model != ModelKind::Dog {
+                return bad(
+                    v.span(),
+                    &format!("solver.{name} is for model = \"dog\" only"),
+                );
+            }
+            if !range.contains(v.get_ref()) {
+                let (lo, hi) = (range.start(), range.end());
+                return bad(
+                    v.span(),
+                    &format!("solver.{name} must be between {lo} and {hi}"),
+                );
+            }
+        }
+        if let Some(v) = &s.substeps {
+            if model != ModelKind::MassSpring {
+                return bad(
+                    v.span(),
+                    "solver.substeps is for model = \"mass-spring\" only",
+                );
+            }
+            if !(1..=64).contains(v.get_ref()) {
+                return bad(v.span(), "solver.substeps must be between 1 and 64");
+            }
+        }
+        Ok(())
+    }
+
+    fn check_input(&self, text: &str, model: ModelKind) -> Result<(), SceneError> {
+        let bad =
+            |span: Range<usize>, message: &str| Err(SceneError::at(text, Some(span), message));
+        let input = self.input.get_ref();
+        let fixture = match (&input.fixture, &input.events) {
+            (Some(f), None) => f,
+            (None, Some(events)) => {
+                if let Some(pages) = &input.pages {
+                    return bad(pages.span(), "input.pages is for book fixtures only");
+                }
+                return crate::events::check(events, self.page_size())
+                    .map_err(|(span, message)| SceneError::at(text, Some(span), message));
+            }
+            _ => {
+                return bad(
+                    self.input.span(),
+                    "input needs either `fixture` or `events`, not both",
+                );
+            }
+        };
+        match crate::fixtures::kind(fixture.get_ref()) {
+            None => {
+                let names = crate::fixtures::NAMES.join(", ");
+                return bad(fixture.span(), &format!("unknown fixture; known: {names}"));
+            }
+            Some(crate::fixtures::Kind::Book) if model != ModelKind::Dog => {
+                return bad(
+                    fixture.span(),
+                    "a book fixture (camera rays on the whole book) needs model = \"dog\"",
+                );
+            }
+            Some(_) if fixture.get_ref() == "seed003-turn" && model == ModelKind::Dog => {
+                return bad(
+                    fixture.span(),
+                    "seed003-turn is on seed 003's 25 x 25 page; the DOG book's page is 12 wide",
+                );
+            }
+            Some(_) => {}
+        }
+        if let Some(pages) = &input.pages {
+            if crate::fixtures::kind(fixture.get_ref()) != Some(crate::fixtures::Kind::Book) {
+                return bad(pages.span(), "input.pages is for book fixtures only");
+            }
+            if *pages.get_ref() == 0 {
+                return bad(pages.span(), "input.pages must be at least 1");
             }
         }
         Ok(())

@@ -135,6 +135,8 @@ impl<T: Real> Obstacle<T> for Floor<T> {
 /// What one collision pass did.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Contacts<T> {
+    /// Point-obstacle tests made (the work of collision handling).
+    pub tested: usize,
     /// Points moved.
     pub resolved: usize,
     /// Largest depth resolved (page units).
@@ -142,9 +144,10 @@ pub struct Contacts<T> {
 }
 
 impl<T: Real> Contacts<T> {
-    /// Records one resolved contact of depth `depth`.
+    /// Records one test, which resolved a contact of depth `depth` if `Some`.
     #[inline]
     pub fn record(&mut self, depth: Option<T>) {
+        self.tested += 1;
         if let Some(d) = depth {
             self.resolved += 1;
             if d > self.max_depth {

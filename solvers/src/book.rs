@@ -6,8 +6,10 @@
 //! its geometry (grids, layout, collision walls, meshing) comes from `folio-geometry` below.
 
 pub mod bookmark;
+pub mod effects;
 pub mod error;
 pub mod interaction;
+pub mod mesh;
 pub mod model;
 pub mod script;
 pub mod settings;
@@ -15,9 +17,10 @@ pub mod simulation;
 pub mod terms;
 
 pub use bookmark::{Flip, History};
+pub use effects::{Effects, TermCensus};
 pub use error::BookError;
 pub use interaction::{Ray, Tent};
-pub use model::{BookTerms, NodeMap};
+pub use model::{BookTerms, Family, NodeMap};
 pub use script::{Action, Event, Script, ScriptError};
 pub use settings::{BookSettings, Weights};
 pub use simulation::{

@@ -20,6 +20,7 @@
 extern crate alloc;
 
 mod assembly;
+#[cfg(feature = "book")]
 pub mod book;
 pub mod error;
 pub mod kkt;

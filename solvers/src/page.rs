@@ -19,9 +19,12 @@
 //! grid node $(i, j)$ is the material point $u = W i/(n_x - 1)$, $v = H j/(n_z - 1)$), a
 //! mesh built from them ([`mesh`]), and per-frame metrics ([`metrics::frame_metrics`]).
 
+#[cfg(feature = "cone")]
 pub mod cone;
+#[cfg(feature = "book")]
 pub mod dog;
 pub mod metrics;
+#[cfg(feature = "mass-spring")]
 pub mod spring;
 pub mod touch;
 
@@ -29,6 +32,7 @@ use folio_geometry::QuadGrid;
 use folio_geometry::mesh::{MeshError, TriMesh, page_mesh};
 use folio_kernels::{Real, Vec3Ops};
 
+#[cfg(feature = "book")]
 use crate::book::BookError;
 
 pub use metrics::{FrameMetrics, frame_metrics};
@@ -51,11 +55,13 @@ pub enum PageError {
         got: usize,
     },
     /// The book under the DOG page refused.
+    #[cfg(feature = "book")]
     Book(BookError),
     /// The mesher refused the samples, the grid or the thickness.
     Mesh(MeshError),
 }
 
+#[cfg(feature = "book")]
 impl From<BookError> for PageError {
     fn from(e: BookError) -> Self {
         Self::Book(e)
@@ -72,6 +78,7 @@ impl core::fmt::Display for PageError {
                     "sample buffer holds {got} points, the render grid has {expected}"
                 )
             }
+            #[cfg(feature = "book")]
             Self::Book(e) => write!(f, "book: {e}"),
             Self::Mesh(e) => write!(f, "mesh: {e}"),
         }

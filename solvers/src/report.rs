@@ -66,3 +66,28 @@ pub struct StepReport<T> {
     /// The symbolic analysis was (re)built in this step (topology change or first step).
     pub analysed: bool,
 }
+
+impl<T: folio_kernels::Real> StepReport<T> {
+    /// A report of a step that has done nothing yet: status `status`, every count zero and
+    /// every measure unevaluated. A model with no unknowns reports
+    /// `StepReport::new(StepStatus::Converged, false)` without calling the solver.
+    #[must_use]
+    pub fn new(status: StepStatus, analysed: bool) -> Self {
+        Self {
+            status,
+            iterations: 0,
+            residual: None,
+            constraint_residual: None,
+            linear_residual: T::ZERO,
+            merit_before: None,
+            merit_after: None,
+            halvings: 0,
+            damping_retries: 0,
+            second_order_corrections: 0,
+            regularized_pivots: 0,
+            hessian_shift: T::ZERO,
+            refinement_steps: 0,
+            analysed,
+        }
+    }
+}

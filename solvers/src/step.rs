@@ -214,22 +214,7 @@ impl<T: Real> Solver<T> {
         let analysed = self.analyse(model)?;
         let s = self.settings;
         let h = s.time_step;
-        let mut report = StepReport {
-            status: StepStatus::NonFiniteInput,
-            iterations: 0,
-            residual: None,
-            constraint_residual: None,
-            linear_residual: T::ZERO,
-            merit_before: None,
-            merit_after: None,
-            halvings: 0,
-            damping_retries: 0,
-            second_order_corrections: 0,
-            regularized_pivots: 0,
-            hessian_shift: T::ZERO,
-            refinement_steps: 0,
-            analysed,
-        };
+        let mut report = StepReport::new(StepStatus::NonFiniteInput, analysed);
         let Some(w) = self.work.as_mut() else {
             return Ok(report);
         };

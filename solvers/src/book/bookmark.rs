@@ -82,16 +82,19 @@ impl<T: Real> History<T> {
         self.len += 1;
     }
 
-    /// Called once per step while the page is held: records `page` every `interval` steps.
-    pub fn tick(&mut self, page: &[T::Vec3]) {
+    /// Called once per step while the page is held: records `page` every `interval` steps;
+    /// `true` when it did.
+    pub fn tick(&mut self, page: &[T::Vec3]) -> bool {
         if self.len == 0 {
-            return;
+            return false;
         }
         self.countdown = self.countdown.saturating_sub(1);
         if self.countdown == 0 {
             self.push(page);
             self.countdown = self.interval;
+            return true;
         }
+        false
     }
 
     /// The page at position `u` in $[0, 1]$ along the history followed by `current` (the

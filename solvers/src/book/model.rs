@@ -21,6 +21,7 @@ use folio_kernels::iso3d::Iso3d;
 use folio_kernels::positional::Positional;
 use folio_kernels::{KernelError, Real, Vec3Ops};
 
+use super::effects::Effects;
 use super::settings::BookSettings;
 use super::terms::{Contact, DogBoundary, DogInner, PlanarFix, Pull};
 use crate::model::{ConstraintSet, Model, PotentialSet, TermVisitor};
@@ -75,6 +76,33 @@ impl NodeMap {
     }
 }
 
+/// The book's term families (see [`BookTerms::count`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Family {
+    /// Gravity on block, cover and page nodes (eq. 12).
+    Gravity,
+    /// The binding glue (eq. 11).
+    Glue,
+    /// Contact springs on block, cover and page nodes.
+    Contacts,
+    /// Curve-Laplacian bending of the block midlines (eq. 10).
+    BlockBending,
+    /// Inextensible block and cover links (eq. 6).
+    BlockLinks,
+    /// The binding-midpoint fix (eq. 8).
+    BindingFix,
+    /// DOG constraints of the page (Sec. 3.2).
+    Dog,
+    /// The bound column's binding (eq. 7).
+    Binding,
+    /// DOG-Laplacian bending of the page (eq. 9).
+    PageBending,
+    /// Soft isometry of the page (eq. 13).
+    PageIso,
+    /// The grab pulls (eq. 14).
+    Pull,
+}
+
 /// Every term of the book (seed eq. 5 and 9), built once; parameters (masses, $q$, the
 /// grab) change between steps through the `set_*` methods, stencils never do.
 #[derive(Clone, Debug)]
@@ -83,6 +111,8 @@ pub struct BookTerms<T: Real> {
     pub nodes: NodeMap,
     /// Mass of every node (page masses).
     pub masses: Vec<T>,
+    /// The effects these terms simulate.
+    pub effects: Effects,
     g: T,
     iso2d: ConstraintSet<Iso2d<T>, 2>,
     fix: ConstraintSet<PlanarFix<T>, 2>,
@@ -100,6 +130,9 @@ pub struct BookTerms<T: Real> {
     page_gravity: PotentialSet<T, Gravity<T>, 1>,
     pull: PotentialSet<T, Pull<T>, 1>,
     pull_nodes: Vec<usize>,
+    /// The weights of the page's bending, iso3D and pull for one page (see
+    /// [`BookTerms::set_stack`]).
+    page_weights: [T; 3],
     /// One per block and cover node, in node order.
     block_contacts: PotentialSet<T, Contact<T>, 1>,
     /// One per page node, in grid order.
@@ -132,6 +165,7 @@ impl<T: Real> BookTerms<T> {
         let mut t = Self {
             nodes,
             masses: alloc::vec![T::ZERO; nodes.total()],
+            effects: settings.effects,
             g: settings.gravity,
             iso2d: ConstraintSet::new(),
             fix: ConstraintSet::new(),
@@ -147,13 +181,20 @@ impl<T: Real> BookTerms<T> {
             page_gravity: PotentialSet::new(T::ONE),
             pull: PotentialSet::new(w.pull),
             pull_nodes: Vec::new(),
+            page_weights: [
+                w.bend_page,
+                w.iso_page * T::from_f64(settings.iso_scale()),
+                w.pull,
+            ],
             block_contacts: PotentialSet::new(T::ONE),
             page_contacts: PotentialSet::new(T::ONE),
         };
         // Blocks: inextensible midlines (eq. 6), curve bending at inner nodes (eq. 10; the
         // binding nodes are left to the glue), gravity (eq. 12).
+        let fx = settings.effects;
         let seg = T::from_f64(p.page_width / (m - 1) as f64);
-        for right in [false, true] {
+        let block_rights: &[bool] = if fx.blocks { &[false, true] } else { &[] };
+        for &right in block_rights {
             for k in 0..m - 1 {
                 let nodes = [t.nodes.block(right, k), t.nodes.block(right, k + 1)];
                 t.iso2d.push(Iso2d::new(seg)?, as_u32(nodes));
@@ -164,25 +205,31 @@ impl<T: Real> BookTerms<T> {
                     .push(curve_laplacian::new([seg, seg])?, as_u32(nodes));
             }
         }
-        let binding_width = T::from_f64(layout.binding[1][0] - layout.binding[0][0]);
-        t.iso2d.push(Iso2d::new(binding_width)?, as_u32([0, m]));
-        if p.cover {
-            let board = T::from_f64(p.page_width + p.cover_overhang);
-            for right in [false, true] {
-                let nodes = [t.nodes.block(right, 0), t.nodes.cover_end(right)];
-                t.iso2d.push(Iso2d::new(board)?, as_u32(nodes));
+        if fx.blocks {
+            let binding_width = T::from_f64(layout.binding[1][0] - layout.binding[0][0]);
+            t.iso2d.push(Iso2d::new(binding_width)?, as_u32([0, m]));
+            if p.cover {
+                let board = T::from_f64(p.page_width + p.cover_overhang);
+                for right in [false, true] {
+                    let nodes = [t.nodes.block(right, 0), t.nodes.cover_end(right)];
+                    t.iso2d.push(Iso2d::new(board)?, as_u32(nodes));
+                }
             }
+            let mid = T::Vec3::new(
+                T::from_f64(0.5 * (layout.binding[0][0] + layout.binding[1][0])),
+                T::from_f64(layout.binding[0][1]),
+                T::ZERO,
+            );
+            t.fix.push(PlanarFix(Fix::new(mid)?), as_u32([0, m]));
         }
-        let mid = T::Vec3::new(
-            T::from_f64(0.5 * (layout.binding[0][0] + layout.binding[1][0])),
-            T::from_f64(layout.binding[0][1]),
-            T::ZERO,
-        );
-        t.fix.push(PlanarFix(Fix::new(mid)?), as_u32([0, m]));
-        t.glue.push(Glue::new(), as_u32([1, 0, m, m + 1]));
-        for node in 0..t.nodes.page_offset() {
-            t.block_gravity
-                .push(Gravity::new(t.g, T::ZERO)?, as_u32([node]));
+        if fx.glue && fx.blocks {
+            t.glue.push(Glue::new(), as_u32([1, 0, m, m + 1]));
+        }
+        if fx.gravity && fx.blocks {
+            for node in 0..t.nodes.page_offset() {
+                t.block_gravity
+                    .push(Gravity::new(t.g, T::ZERO)?, as_u32([node]));
+            }
         }
         // Active page: DOG constraints and DOG-Laplacian bending per star, binding of the
         // bound column (eq. 7), iso3D on grid edges (eq. 13), gravity, the grab pull.
@@ -223,9 +270,11 @@ impl<T: Real> BookTerms<T> {
             t.iso3d
                 .push(Iso3d::new(rest_of(a, b))?, as_u32([po + a, po + b]));
         }
-        for k in 0..grid.len() {
-            t.page_gravity
-                .push(Gravity::new(t.g, T::ZERO)?, as_u32([po + k]));
+        if fx.gravity {
+            for k in 0..grid.len() {
+                t.page_gravity
+                    .push(Gravity::new(t.g, T::ZERO)?, as_u32([po + k]));
+            }
         }
         for k in grid.second_ring() {
             let pull = Pull {
@@ -244,7 +293,12 @@ impl<T: Real> BookTerms<T> {
             )?,
             active: false,
         };
-        for node in 0..t.nodes.total() {
+        let contact_nodes = match (fx.collides(), fx.blocks) {
+            (false, _) => 0..0,
+            (true, true) => 0..t.nodes.total(),
+            (true, false) => po..t.nodes.total(),
+        };
+        for node in contact_nodes {
             let set = if node < po {
                 &mut t.block_contacts
             } else {
@@ -253,6 +307,26 @@ impl<T: Real> BookTerms<T> {
             set.push(off, as_u32([node]));
         }
         Ok(t)
+    }
+
+    /// The number of terms of `family`.
+    #[must_use]
+    pub fn count(&self, family: Family) -> usize {
+        match family {
+            Family::Gravity => self.block_gravity.terms().len() + self.page_gravity.terms().len(),
+            Family::Glue => self.glue.terms().len(),
+            Family::Contacts => {
+                self.block_contacts.terms().len() + self.page_contacts.terms().len()
+            }
+            Family::BlockBending => self.bend_blocks.terms().len(),
+            Family::BlockLinks => self.iso2d.terms().len(),
+            Family::BindingFix => self.fix.terms().len(),
+            Family::Dog => self.dog_inner.terms().len() + self.dog_boundary.terms().len(),
+            Family::Binding => self.binding.terms().len(),
+            Family::PageBending => self.bend_inner.terms().len() + self.bend_boundary.terms().len(),
+            Family::PageIso => self.iso3d.terms().len(),
+            Family::Pull => self.pull.terms().len(),
+        }
     }
 
     /// The mass of `node` (page masses).
@@ -291,6 +365,21 @@ impl<T: Real> BookTerms<T> {
         for (kernel, &m) in self.page_gravity.kernels_mut().zip(masses[po..].iter()) {
             kernel.weight = g * m;
         }
+    }
+
+    /// Scales the active page's bending, isometry and pull weights for a stack of `pages`
+    /// pages (at least 1). Loose sheets slide over each other, so a stack of $k$ bends $k$
+    /// times as stiffly as one sheet (not $k^3$, as a glued board would), stretches $k$
+    /// times as stiffly, and weighs $k$ times as much ([`BookTerms::set_masses`]): every
+    /// term of the page's energy scales with $k$ and the stack moves as one page does
+    /// under the same grab. With the pull left at one page's weight, a 45-page stack sags
+    /// out of the grab under 45 pages of gravity and falls back.
+    pub fn set_stack(&mut self, pages: T) {
+        let [bend, iso, pull] = self.page_weights.map(|w| w * pages);
+        self.bend_inner.weight = bend;
+        self.bend_boundary.weight = bend;
+        self.iso3d.weight = iso;
+        self.pull.weight = pull;
     }
 
     /// Sets the binding parameter $q$ of the bound column (clamped to `[0, 1]`).
@@ -392,7 +481,7 @@ impl<T: Real> Model<T> for RestView<'_, T> {
         self.0.nodes.total()
     }
     fn is_fixed(&self, node: usize, axis: usize) -> bool {
-        axis == 2 || node >= self.0.nodes.page_offset()
+        axis == 2 || node >= self.0.nodes.page_offset() || !self.0.effects.blocks
     }
     fn mass(&self, node: usize) -> T {
         self.0.masses[node]
@@ -411,7 +500,8 @@ impl<T: Real> Model<T> for ActiveView<'_, T> {
     }
     fn is_fixed(&self, node: usize, axis: usize) -> bool {
         let n = &self.0.nodes;
-        axis == 2 && (node < n.page_offset() || n.is_bound(node))
+        let block = node < n.page_offset();
+        (block && !self.0.effects.blocks) || (axis == 2 && (block || n.is_bound(node)))
     }
     fn mass(&self, node: usize) -> T {
         self.0.masses[node]

@@ -4,6 +4,7 @@
 use folio_geometry::BookParams;
 use folio_kernels::Real;
 
+use super::effects::Effects;
 use crate::settings::Settings;
 
 /// Weights of the potentials of seed `000_…` eq. 9-14 at the seed's 11x8 grid
@@ -59,7 +60,8 @@ pub struct BookSettings<T: Real> {
     /// Mass of each cover board's outer node (page masses).
     pub cover_mass: T,
     /// Smallest mass given to a block's midline (page masses), so that an empty block still
-    /// has a positive mass matrix.
+    /// has a positive mass matrix. A block is never lighter than the active page or stack
+    /// either (see the book's mass update).
     pub min_block_mass: T,
     /// The grab's leash (page units): the pull (eq. 14) aims at most this far from the held
     /// node, towards the user's target. A finger that runs ahead of the page otherwise asks
@@ -114,6 +116,8 @@ pub struct BookSettings<T: Real> {
     pub max_flips: usize,
     /// The time stepper's settings (time step, Newton iterations, line search, ...).
     pub solver: Settings<T>,
+    /// The effects simulated (default: all; see [`Effects`]).
+    pub effects: Effects,
 }
 
 impl<T: Real> Default for BookSettings<T> {
@@ -155,6 +159,7 @@ impl<T: Real> Default for BookSettings<T> {
                 merit_slack: T::from_f64(0.05),
                 ..Settings::default()
             },
+            effects: Effects::ALL,
         }
     }
 }

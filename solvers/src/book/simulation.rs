@@ -9,13 +9,22 @@ use folio_geometry::{BlockSide, BookLayout, Contacts, Floor, Obstacle, QuadGrid,
 use folio_kernels::{Real, Vec3Ops, math};
 
 use super::bookmark::{Flip, History};
+use super::effects::TermCensus;
 use super::error::BookError;
 use super::interaction::{Ray, Tent};
 use super::model::{ActiveView, BookTerms, NodeMap, RestView};
 use super::script::Action;
 use super::settings::BookSettings;
-use crate::report::StepReport;
+use crate::model::Model;
+use crate::report::{StepReport, StepStatus};
 use crate::step::{Correction, Solver, State};
+
+/// Unknowns and constraint rows of `solver`'s analysed KKT pattern.
+fn pattern_size<T: Real>(solver: &Solver<T>) -> (usize, usize) {
+    solver
+        .kkt()
+        .map_or((0, 0), |k| (k.pattern.dofs, k.pattern.rows))
+}
 
 /// Pages in each part of the book.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -119,6 +128,11 @@ pub struct BookStepReport<T> {
     pub collision_rounds: u32,
     /// The constraint corrections after collision handling.
     pub correction: Correction<T>,
+    /// The terms and rows of the step's view (what the effects that are on contribute; see
+    /// [`crate::book::Effects`]). Zero when nothing was solved.
+    pub census: TermCensus,
+    /// A history snapshot was taken (finger-bookmarking).
+    pub snapshot: bool,
     /// The block the active page merged into at the end of this step.
     pub merged: Option<BlockSide>,
 }
@@ -141,6 +155,8 @@ pub struct Book<T: Real> {
     flips: Vec<Flip<T>>,
     /// Nodes a collision pushed in the current step (pinned by the projection).
     pushed: Vec<bool>,
+    /// The terms of the rest view and of the active view.
+    census: [TermCensus; 2],
 }
 
 /// How a finger-bookmarking request ended. Only `Started` changes the book.
@@ -154,6 +170,8 @@ pub enum BookmarkOutcome {
     NoPage,
     /// `max_flips` pages are already in flight.
     Busy,
+    /// Finger-bookmarking is not among the book's effects.
+    Disabled,
 }
 
 /// What an input did.
@@ -188,6 +206,7 @@ impl<T: Real> BookSettings<T> {
     /// The first unusable field.
     pub fn validate(&self) -> Result<(), BookError> {
         self.params.validate()?;
+        self.effects.validate()?;
         self.solver.validate()?;
         let positive = |v: T| v.is_finite() && v > T::ZERO;
         let non_negative = |v: T| v.is_finite() && v >= T::ZERO;
@@ -293,18 +312,28 @@ impl<T: Real> Book<T> {
             active: None,
             edges,
             settle_steps: 0,
+            // Without bookmarking the history holds pages of no nodes: it never copies.
             history: History::new(
-                grid.len(),
+                if settings.effects.bookmarks() {
+                    grid.len()
+                } else {
+                    0
+                },
                 settings.history_capacity,
                 settings.history_interval,
             ),
             flips: Vec::with_capacity(settings.max_flips),
             pushed,
+            census: [TermCensus::default(); 2],
         };
         book.place_page(BlockSide::Right, 1);
         book.update_masses();
-        book.rest_solver.analyse(&RestView(&book.terms))?;
+        if settings.effects.blocks {
+            book.rest_solver.analyse(&RestView(&book.terms))?;
+            RestView(&book.terms).visit_terms(&mut book.census[0]);
+        }
         book.active_solver.analyse(&ActiveView(&book.terms))?;
+        ActiveView(&book.terms).visit_terms(&mut book.census[1]);
         book.settle()?;
         Ok(book)
     }
@@ -414,23 +443,36 @@ impl<T: Real> Book<T> {
         T::from_f64(f64::from(self.counts.active) * self.layout.params.page_thickness)
     }
 
+    /// Sets the masses of blocks, cover and page from the page counts, the page stack's
+    /// stiffness ([`BookTerms::set_stack`]) and the binding parameter $q$.
+    ///
+    /// A block is never lighter than `min_block_mass` nor than the active page (or stack):
+    /// the stack hangs from the binding the blocks share, and a block much lighter than it
+    /// is tossed about by it. Grabbing 45 of 80 pages from the right block, with the left
+    /// one empty, bound a 45-page stack to a block of 0.5 page masses; the collisions
+    /// pushed that block's midline back every step, the projection that restores the
+    /// binding and the contacts undid the drag, and the stack fell back onto the right
+    /// block. With the floor it turns and lands on the left.
     fn update_masses(&mut self) {
         let s = &self.settings;
+        let page = T::from_f64(f64::from(self.counts.active.max(1))) * s.page_mass;
+        let floor = if page > s.min_block_mass {
+            page
+        } else {
+            s.min_block_mass
+        };
         let block = |pages: u32| {
             let m = T::from_f64(f64::from(pages)) * s.page_mass;
-            if m > s.min_block_mass {
-                m
-            } else {
-                s.min_block_mass
-            }
+            if m > floor { m } else { floor }
         };
-        let page = T::from_f64(f64::from(self.counts.active.max(1))) * s.page_mass;
         let (left, right, cover) = (
             block(self.counts.left),
             block(self.counts.right),
             s.cover_mass,
         );
         self.terms.set_masses(left, right, cover, page);
+        self.terms
+            .set_stack(T::from_f64(f64::from(self.counts.active.max(1))));
         let q = self
             .layout
             .binding_parameter(self.counts.left, self.counts.active);
@@ -788,24 +830,31 @@ impl<T: Real> Book<T> {
         for v in &mut self.state.v {
             *v *= drag;
         }
-        let (solver, report) = if self.active.is_some() {
+        let (report, dofs, constraint_rows, census) = if self.active.is_some() {
             let r = self
                 .active_solver
                 .step(&ActiveView(&self.terms), &mut self.state)?;
-            (&self.active_solver, r)
-        } else {
+            let (d, c) = pattern_size(&self.active_solver);
+            (r, d, c, self.census[1])
+        } else if self.settings.effects.blocks {
             let r = self
                 .rest_solver
                 .step(&RestView(&self.terms), &mut self.state)?;
-            (&self.rest_solver, r)
+            let (d, c) = pattern_size(&self.rest_solver);
+            (r, d, c, self.census[0])
+        } else {
+            // Fixed blocks and no page: nothing to simulate.
+            (
+                StepReport::new(StepStatus::Converged, false),
+                0,
+                0,
+                TermCensus::default(),
+            )
         };
-        let (dofs, constraint_rows) = solver
-            .kkt()
-            .map_or((0, 0), |k| (k.pattern.dofs, k.pattern.rows));
         let mut contacts = Contacts::default();
         let mut rounds = 0;
         let mut correction = Correction::default();
-        if report.status.advanced() {
+        if report.status.advanced() && dofs > 0 {
             self.pushed.iter_mut().for_each(|p| *p = false);
             self.terms.clear_contacts();
             rounds = self.collide(&mut contacts, self.settings.collision_rounds);
@@ -831,14 +880,12 @@ impl<T: Real> Book<T> {
             }
         }
         let po = self.terms.nodes.page_offset();
-        if phase == Phase::Held {
-            self.history.tick(&self.state.x[po..]);
+        let snapshot = phase == Phase::Held
+            && self.settings.effects.bookmarks()
+            && self.history.tick(&self.state.x[po..]);
+        if self.settings.effects.bookmarks() {
+            self.advance_flips();
         }
-        for f in &mut self.flips {
-            f.position += f.rate;
-        }
-        self.flips
-            .retain(|f| f.position > T::ZERO && f.position < T::ONE);
         let merged = self.merge_if_settled();
         Ok(BookStepReport {
             solver: report,
@@ -848,6 +895,8 @@ impl<T: Real> Book<T> {
             contacts,
             collision_rounds: rounds,
             correction,
+            census,
+            snapshot,
             merged,
         })
     }
@@ -886,9 +935,13 @@ impl<T: Real> Book<T> {
     /// Up to `max_rounds` detect/resolve rounds, stopping at the first that finds nothing;
     /// returns the rounds that found contacts.
     fn collide(&mut self, total: &mut Contacts<T>, max_rounds: u32) -> u32 {
+        if !self.settings.effects.collides() {
+            return 0;
+        }
         let mut rounds = 0;
         for _ in 0..max_rounds {
             let c = self.resolve_contacts();
+            total.tested += c.tested;
             if c.resolved == 0 {
                 break;
             }
@@ -930,11 +983,10 @@ impl<T: Real> Book<T> {
         Some(wall)
     }
 
-    /// One detect/resolve round (seed Sec. 3.4): cover and binding on the table, blocks on
-    /// the cover (or the table), the active page on the blocks.
-    fn resolve_contacts(&mut self) -> Contacts<T> {
+    /// The blocks' part of [`Book::resolve_contacts`]: cover and binding on the table,
+    /// blocks on the cover (or the table).
+    fn resolve_block_contacts(&mut self, c: &mut Contacts<T>) {
         let n = self.terms.nodes;
-        let mut c = Contacts::default();
         let up = T::Vec3::new(T::ZERO, T::ONE, T::ZERO);
         let y0 = T::from_f64(if n.cover {
             self.layout.params.cover_thickness
@@ -975,6 +1027,17 @@ impl<T: Real> Book<T> {
                 };
                 c.record(depth);
             }
+        }
+    }
+
+    /// One detect/resolve round (seed Sec. 3.4): cover and binding on the table, blocks on
+    /// the cover (or the table) when the blocks are simulated, the active page on the
+    /// blocks.
+    fn resolve_contacts(&mut self) -> Contacts<T> {
+        let n = self.terms.nodes;
+        let mut c = Contacts::default();
+        if self.settings.effects.blocks {
+            self.resolve_block_contacts(&mut c);
         }
         if self.active.is_some() {
             let half = self.active_thickness() * T::HALF;
@@ -1034,10 +1097,22 @@ impl<T: Real> Book<T> {
         Some(side)
     }
 
+    /// Moves every flying page one step along its flight; drops the ones that arrived.
+    fn advance_flips(&mut self) {
+        for f in &mut self.flips {
+            f.position += f.rate;
+        }
+        self.flips
+            .retain(|f| f.position > T::ZERO && f.position < T::ONE);
+    }
+
     /// Finger-bookmarking (seed Sec. 4.1): one more page of the block the active page came
     /// from flips into the grip (`add`) or one held page flips back (`!add`). Counts, masses
     /// and $q$ change at once; the flying page is drawn from [`Book::flip_page`].
     pub fn bookmark(&mut self, add: bool) -> BookmarkOutcome {
+        if !self.settings.effects.bookmarks() {
+            return BookmarkOutcome::Disabled;
+        }
         let Some(a) = self.active.filter(|a| a.hold.is_some()) else {
             return BookmarkOutcome::NotHeld;
         };
