@@ -13,14 +13,10 @@
 
 extern crate alloc;
 
-mod builtin;
-mod events;
 mod export;
-mod fixtures;
 mod outputs;
 mod render;
 mod run;
-mod scene;
 mod timeline;
 
 use std::io::IsTerminal;
@@ -30,8 +26,9 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
+use folio::builtin;
+use folio::scene::Scene;
 use run::Report;
-use scene::Scene;
 
 const USAGE: &str = "usage: folio [run SCENE_OR_NAME [--out DIR] | list | check SCENE...]";
 

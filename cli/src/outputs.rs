@@ -9,8 +9,8 @@ use folio_geometry::mesh::TriMesh;
 use crate::export::Animation;
 use crate::render::{ContactSheet, SheetSettings, book_bounds};
 use crate::run::{Report, RunError, Shape};
-use crate::scene::Scene;
 use crate::timeline::timeline_svg;
+use folio::scene::Scene;
 
 /// Frames per second of every scene (the animation's clock).
 const FPS: f32 = 60.0;

@@ -6,17 +6,18 @@ use std::time::Instant;
 
 use folio_geometry::mesh::TriMesh;
 use folio_geometry::{BookParams, QuadGrid};
-use folio_solvers::book::{Action, Book, BookSettings, Effects, Script};
+use folio_solvers::book::{Action, Book, Script};
 use folio_solvers::page::cone::{ConePage, ConeSettings};
 use folio_solvers::page::dog::DogPage;
-use folio_solvers::page::spring::{SpringPage, SpringSettings};
+use folio_solvers::page::spring::SpringPage;
 use folio_solvers::page::{PageModel, PageStatus, TouchScript, frame_metrics};
 
-use crate::events;
+use folio::events;
+use folio::settings::{book_settings, spring_settings};
 use serde::Serialize;
 
-use crate::fixtures::{self, Kind};
-use crate::scene::{ModelKind, Scene};
+use folio::fixtures::{self, Kind};
+use folio::scene::{ModelKind, Scene};
 
 /// The render grid page models are measured on (24 x 34 quads, half a page unit).
 const RENDER_QUADS: (usize, usize) = (24, 34);
@@ -123,75 +124,6 @@ impl core::error::Error for RunError {}
 
 fn fail(e: impl core::fmt::Display) -> RunError {
     RunError(e.to_string())
-}
-
-/// The book settings of a DOG scene: its book, effects, weights and solver settings.
-fn book_settings(scene: &Scene) -> BookSettings<f64> {
-    let mut s = BookSettings::default();
-    if let Some(book) = &scene.book {
-        let b = book.get_ref();
-        let p: &mut BookParams = &mut s.params;
-        if let Some(v) = &b.pages {
-            p.total_pages = *v.get_ref();
-            p.left_pages = p.total_pages / 2;
-        }
-        if let Some(v) = &b.left_pages {
-            p.left_pages = *v.get_ref();
-        }
-        set(&mut p.page_width, b.page_width.as_ref());
-        set(&mut p.page_thickness, b.thickness.as_ref());
-    }
-    s.params.cover = scene.has_effect("cover");
-    s.effects = Effects::NONE;
-    for name in scene.effect_names() {
-        // `cover` is geometry (above); the scene check refused every unknown name.
-        s.effects.enable(&name);
-    }
-    if let Some(w) = &scene.weights {
-        let w = w.get_ref();
-        set(&mut s.weights.bend_page, w.bend_page.as_ref());
-        set(&mut s.weights.bend_blocks, w.bend_blocks.as_ref());
-        set(&mut s.weights.glue, w.glue.as_ref());
-        set(&mut s.weights.iso_page, w.iso_page.as_ref());
-        set(&mut s.weights.pull, w.pull.as_ref());
-    }
-    if let Some(solver) = &scene.solver {
-        let v = solver.get_ref();
-        set(&mut s.solver.time_step, v.time_step.as_ref());
-        set(
-            &mut s.solver.newton_iterations,
-            v.newton_iterations.as_ref(),
-        );
-        set(&mut s.max_corrections, v.max_corrections.as_ref());
-    }
-    s
-}
-
-/// The mass-spring settings of a scene: seed 003's experiment on its fixture, else the
-/// defaults; its effects (gravity, the table) and solver settings.
-fn spring_settings(scene: &Scene, seed: bool) -> SpringSettings<f64> {
-    let mut s = if seed {
-        SpringSettings::seed_experiment()
-    } else {
-        SpringSettings::default()
-    };
-    if !scene.has_effect("gravity") {
-        s.particle_weight = 0.0;
-    }
-    s.floor = scene.has_effect("collisions");
-    if let Some(solver) = &scene.solver {
-        let v = solver.get_ref();
-        set(&mut s.time_step, v.time_step.as_ref());
-        set(&mut s.substeps, v.substeps.as_ref());
-    }
-    s
-}
-
-/// Overwrites `field` with the scene's value, if it gives one.
-fn set<V: Copy>(field: &mut V, value: Option<&toml::Spanned<V>>) {
-    if let Some(v) = value {
-        *field = *v.get_ref();
-    }
 }
 
 /// The frames to run: the scene's, else the input's.
@@ -351,7 +283,7 @@ pub fn run(
                 }
             }
         }
-        let mut book = Book::new(book_settings(scene)).map_err(fail)?;
+        let mut book = Book::<f64>::new(book_settings(scene)).map_err(fail)?;
         let n = frames(scene, script.frames);
         for frame in 0..n {
             for e in script.events_at(frame) {
@@ -452,7 +384,7 @@ impl Report {
     /// The expectations of `expect` this report does not meet, as messages (empty: all met).
     /// Non-finite frames always fail.
     #[must_use]
-    pub fn unmet(&self, expect: &crate::scene::Expect) -> Vec<String> {
+    pub fn unmet(&self, expect: &folio::scene::Expect) -> Vec<String> {
         let s = &self.summary;
         let mut out = Vec::new();
         if s.nonfinite_frames > 0 {

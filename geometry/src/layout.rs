@@ -99,7 +99,18 @@ pub enum LayoutError {
         /// The count given.
         found: usize,
     },
+    /// A length, or the book's whole thickness, exceeds [`MAX_EXTENT`].
+    TooLarge {
+        /// The offending field.
+        field: &'static str,
+    },
 }
+
+/// The largest page width, page height, book thickness or cover size (page units): $10^4$
+/// times the seed's page width. Beyond it the squared distances of collision tests and
+/// grabs leave the `f32` range (and, near $10^{150}$, the `f64` one), so a grab could no
+/// longer tell nodes apart.
+pub const MAX_EXTENT: f64 = 1.2e5;
 
 impl core::fmt::Display for LayoutError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
@@ -112,6 +123,7 @@ impl core::fmt::Display for LayoutError {
             Self::TooFewMidlineNodes { found } => {
                 write!(f, "midline_nodes is {found}; at least 3 are needed")
             }
+            Self::TooLarge { field } => write!(f, "{field} exceeds {MAX_EXTENT} page units"),
         }
     }
 }
@@ -157,6 +169,21 @@ impl BookParams {
         for (field, v) in non_negative {
             if !(v.is_finite() && v >= 0.0) {
                 return Err(LayoutError::NonPositive { field });
+            }
+        }
+        let extents = [
+            ("page_width", self.page_width),
+            ("page_height", self.page_height()),
+            (
+                "page_thickness",
+                self.page_thickness * f64::from(self.total_pages),
+            ),
+            ("cover_thickness", self.cover_thickness),
+            ("cover_overhang", self.cover_overhang),
+        ];
+        for (field, v) in extents {
+            if v > MAX_EXTENT {
+                return Err(LayoutError::TooLarge { field });
             }
         }
         if self.midline_nodes < 3 {

@@ -215,6 +215,32 @@ fn bad_input_is_refused_without_changing_the_book() {
         bad(&|s| s.params.page_thickness = -0.01),
         Some(BookError::Layout(_))
     ));
+    // Found by the C API's fuzz test: a page 1e300 wide was accepted, and a later grab
+    // measured only infinite distances and held a node that is not a page node.
+    for width in [1e300, f64::MAX, 2.0 * folio_geometry::layout::MAX_EXTENT] {
+        assert!(matches!(
+            bad(&|s| s.params.page_width = width),
+            Some(BookError::Layout(
+                folio_geometry::LayoutError::TooLarge { .. }
+            ))
+        ));
+    }
+    assert!(matches!(
+        bad(&|s| s.params.page_thickness = 1e4),
+        Some(BookError::Layout(folio_geometry::LayoutError::TooLarge {
+            field: "page_thickness"
+        }))
+    ));
+    let mut wide = BookSettings::<f64>::default();
+    wide.params.page_width = 5e4;
+    let mut wide = Book::<f64>::new(wide).unwrap();
+    for at in [[5e4, 5e4], [1e300, -1e300], [0.0, 0.0]] {
+        let grabbed = wide.grab_at(BlockSide::Right, at, 1).unwrap();
+        let GrabOutcome::Grabbed { node, .. } = grabbed else {
+            panic!("{grabbed:?}");
+        };
+        assert!(node < wide.nodes().grid.len());
+    }
     assert!(matches!(
         bad(&|s| s.page_mass = -1.0),
         Some(BookError::InvalidSetting {

@@ -19,6 +19,20 @@ use crate::model::Model;
 use crate::report::{StepReport, StepStatus};
 use crate::step::{Correction, Solver, State};
 
+/// The node of `nodes` with the smallest `distance` (NaN counts as farthest); `None` only
+/// for no nodes. Always one of `nodes`, whatever the distances: a grab never holds a node
+/// that is not a page node.
+fn nearest(nodes: &[usize], distance: impl Fn(usize) -> f64) -> Option<usize> {
+    nodes
+        .iter()
+        .map(|&node| (distance(node), node))
+        .min_by(|a, b| match (a.0.is_nan(), b.0.is_nan()) {
+            (false, false) => a.0.total_cmp(&b.0),
+            (a_nan, _) => a_nan.cmp(&b.0.is_nan()),
+        })
+        .map(|(_, node)| node)
+}
+
 /// Unknowns and constraint rows of `solver`'s analysed KKT pattern.
 fn pattern_size<T: Real>(solver: &Solver<T>) -> (usize, usize) {
     solver
@@ -560,14 +574,12 @@ impl<T: Real> Book<T> {
             Ok(side) => side,
             Err(outcome) => return Ok(outcome),
         };
-        let mut best = (T::MAX, 0);
-        for &node in self.terms.pull_nodes() {
-            let d = ray.distance_sq(self.state.x[node]);
-            if d < best.0 {
-                best = (d, node);
-            }
-        }
-        Ok(self.hold_node(side, best.1, forward))
+        let nearest = nearest(self.terms.pull_nodes(), |node| {
+            ray.distance_sq(self.state.x[node]).to_f64()
+        });
+        Ok(nearest.map_or(GrabOutcome::Missed, |node| {
+            self.hold_node(side, node, forward)
+        }))
     }
 
     /// Grabs `pages` pages from the block on `side` (a stack when more than one) by the
@@ -592,17 +604,14 @@ impl<T: Real> Book<T> {
         };
         let n = self.terms.nodes;
         let spacing = self.grid_spacing();
-        let mut best = (f64::MAX, 0);
-        for &node in self.terms.pull_nodes() {
+        let nearest = nearest(self.terms.pull_nodes(), |node| {
             let (i, j) = n.grid.coords(node - n.page_offset());
             let du = i as f64 * spacing[0] - at[0];
             let dv = j as f64 * spacing[1] - at[1];
-            if du * du + dv * dv < best.0 {
-                best = (du * du + dv * dv, node);
-            }
-        }
+            du * du + dv * dv
+        });
         let down = T::Vec3::new(T::ZERO, -T::ONE, T::ZERO);
-        Ok(self.hold_node(side, best.1, down))
+        Ok(nearest.map_or(GrabOutcome::Missed, |node| self.hold_node(side, node, down)))
     }
 
     /// The block a grab holds: the active page's, or else `pick` after `pages` pages of it

@@ -1,0 +1,126 @@
+//! A book of either precision behind one type, so that a handle can name both.
+
+use folio_geometry::mesh::{MeshError, TriMesh};
+use folio_geometry::{BlockSide, QuadGrid};
+use folio_kernels::{Real, Vec3Ops};
+use folio_solvers::book::{Book, BookError, DragOutcome, GrabOutcome, PageCounts};
+
+use crate::step::FolioStepReport;
+
+/// A [`Book`] in `f32` or `f64` (`FolioBookSettings::precision`).
+#[derive(Debug)]
+pub(crate) enum AnyBook {
+    /// Single precision.
+    F32(Book<f32>),
+    /// Double precision.
+    F64(Book<f64>),
+}
+
+/// Runs `$body` with `$b` bound to the book of either precision.
+macro_rules! dispatch {
+    ($any:expr, $b:ident => $body:expr) => {
+        match $any {
+            AnyBook::F32($b) => $body,
+            AnyBook::F64($b) => $body,
+        }
+    };
+}
+
+/// `p` in precision `T`.
+fn vec3<T: Real>(p: [f64; 3]) -> T::Vec3 {
+    T::Vec3::new(T::from_f64(p[0]), T::from_f64(p[1]), T::from_f64(p[2]))
+}
+
+/// `p` in `f64`.
+fn xyz<T: Real>(p: T::Vec3) -> [f64; 3] {
+    [p.x().to_f64(), p.y().to_f64(), p.z().to_f64()]
+}
+
+/// One step and its C report.
+fn step<T: Real>(book: &mut Book<T>) -> Result<FolioStepReport, BookError> {
+    let r = book.step()?;
+    Ok(FolioStepReport::new(book, &r))
+}
+
+impl AnyBook {
+    /// [`Book::grab_at`].
+    pub fn grab_at(
+        &mut self,
+        side: BlockSide,
+        at: [f64; 2],
+        pages: u32,
+    ) -> Result<GrabOutcome, BookError> {
+        dispatch!(self, b => b.grab_at(side, at, pages))
+    }
+
+    /// [`Book::drag_to`] with the target in `f64`.
+    pub fn drag_to(&mut self, target: [f64; 3]) -> Result<DragOutcome, BookError> {
+        dispatch!(self, b => b.drag_to(vec3_of(b, target)))
+    }
+
+    /// The page's width $W$ and height $H$ (page units).
+    pub fn page_size(&self) -> [f64; 2] {
+        dispatch!(self, b => {
+            let p = b.layout().params;
+            [p.page_width, p.page_height()]
+        })
+    }
+
+    /// [`Book::counts`].
+    pub fn counts(&self) -> PageCounts {
+        dispatch!(self, b => b.counts())
+    }
+
+    /// [`Book::release`].
+    pub fn release(&mut self) -> bool {
+        dispatch!(self, b => b.release())
+    }
+
+    /// [`Book::step`] with its C report.
+    pub fn step(&mut self) -> Result<FolioStepReport, BookError> {
+        dispatch!(self, b => step(b))
+    }
+
+    /// [`Book::mesh`].
+    pub fn mesh(&self, out: &mut TriMesh) -> Result<(), MeshError> {
+        dispatch!(self, b => b.mesh(out))
+    }
+
+    /// The active page's grid (fixed for the book).
+    pub fn grid(&self) -> QuadGrid {
+        dispatch!(self, b => b.nodes().grid)
+    }
+
+    /// The active page's nodes in grid order, in `f64`, into `out` (`3 * grid().len()`
+    /// values); `false` (nothing written) when there is no active page.
+    pub fn page_positions(&self, out: &mut [f64]) -> bool {
+        dispatch!(self, b => match b.page() {
+            Some(page) => {
+                for (chunk, &p) in out.chunks_exact_mut(3).zip(page) {
+                    chunk.copy_from_slice(&xyz_of(b, p));
+                }
+                true
+            }
+            None => false,
+        })
+    }
+
+    /// The held node's position, if a node is held.
+    pub fn held_position(&self) -> Option<[f64; 3]> {
+        dispatch!(self, b => {
+            let node = b.held_node()?;
+            let page = b.page()?;
+            page.get(node).map(|&p| xyz_of(b, p))
+        })
+    }
+}
+
+/// [`vec3`] with `T` taken from `_book`.
+fn vec3_of<T: Real>(_book: &Book<T>, p: [f64; 3]) -> T::Vec3 {
+    vec3::<T>(p)
+}
+
+/// [`xyz`] with `T` taken from `_book`.
+fn xyz_of<T: Real>(_book: &Book<T>, p: T::Vec3) -> [f64; 3] {
+    xyz::<T>(p)
+}

@@ -1,0 +1,89 @@
+//! The solver settings a scene describes: the DOG book's (book, effects, weights, solver)
+//! and the mass-spring page's (effects, solver). Shared by the `folio` command and the C
+//! API's scene constructor.
+
+use folio_geometry::BookParams;
+use folio_kernels::Real;
+use folio_solvers::book::{BookSettings, Effects};
+use folio_solvers::page::spring::SpringSettings;
+
+use crate::scene::Scene;
+
+/// The book settings of a DOG scene in precision `T`: its book, effects, weights and
+/// solver settings (the rest are the book's defaults in `T`).
+#[must_use]
+pub fn book_settings<T: Real>(scene: &Scene) -> BookSettings<T> {
+    let mut s = BookSettings::default();
+    if let Some(book) = &scene.book {
+        let b = book.get_ref();
+        let p: &mut BookParams = &mut s.params;
+        if let Some(v) = &b.pages {
+            p.total_pages = *v.get_ref();
+            p.left_pages = p.total_pages / 2;
+        }
+        if let Some(v) = &b.left_pages {
+            p.left_pages = *v.get_ref();
+        }
+        set(&mut p.page_width, b.page_width.as_ref());
+        set(&mut p.page_thickness, b.thickness.as_ref());
+    }
+    s.params.cover = scene.has_effect("cover");
+    s.effects = Effects::NONE;
+    for name in scene.effect_names() {
+        // `cover` is geometry (above); the scene check refused every unknown name.
+        s.effects.enable(&name);
+    }
+    if let Some(w) = &scene.weights {
+        let w = w.get_ref();
+        set_real(&mut s.weights.bend_page, w.bend_page.as_ref());
+        set_real(&mut s.weights.bend_blocks, w.bend_blocks.as_ref());
+        set_real(&mut s.weights.glue, w.glue.as_ref());
+        set_real(&mut s.weights.iso_page, w.iso_page.as_ref());
+        set_real(&mut s.weights.pull, w.pull.as_ref());
+    }
+    if let Some(solver) = &scene.solver {
+        let v = solver.get_ref();
+        set_real(&mut s.solver.time_step, v.time_step.as_ref());
+        set(
+            &mut s.solver.newton_iterations,
+            v.newton_iterations.as_ref(),
+        );
+        set(&mut s.max_corrections, v.max_corrections.as_ref());
+    }
+    s
+}
+
+/// The mass-spring settings of a scene: seed 003's experiment on its fixture, else the
+/// defaults; its effects (gravity, the table) and solver settings.
+#[must_use]
+pub fn spring_settings(scene: &Scene, seed: bool) -> SpringSettings<f64> {
+    let mut s = if seed {
+        SpringSettings::seed_experiment()
+    } else {
+        SpringSettings::default()
+    };
+    if !scene.has_effect("gravity") {
+        s.particle_weight = 0.0;
+    }
+    s.floor = scene.has_effect("collisions");
+    if let Some(solver) = &scene.solver {
+        let v = solver.get_ref();
+        set(&mut s.time_step, v.time_step.as_ref());
+        set(&mut s.substeps, v.substeps.as_ref());
+    }
+    s
+}
+
+/// Overwrites `field` with the scene's value in precision `T`, if it gives one.
+fn set_real<T: Real>(field: &mut T, value: Option<&toml::Spanned<f64>>) {
+    if let Some(v) = value {
+        *field = T::from_f64(*v.get_ref());
+    }
+}
+
+/// Overwrites `field` with the scene's value, if it gives one.
+fn set<V: Copy>(field: &mut V, value: Option<&toml::Spanned<V>>) {
+    if let Some(v) = value {
+        *field = *v.get_ref();
+    }
+}

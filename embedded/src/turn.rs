@@ -1,0 +1,282 @@
+//! The page turn: the default book (`BookSettings::default()`, seed 000's DOG book) plays
+//! the recorded page turn of the integration tests (`tests/fixtures/page_turn.input`: camera
+//! rays for a grab near the right page's outer edge at frame 30, 100 frames of drag over the
+//! spine, the release at frame 131, then the page falls and settles; 750 frames), the same
+//! input that `tests/tests/book.rs` (`page_turn_runs_in_f32`) plays on the host.
+//!
+//! Each step is timed alone (the inputs before it are timed apart); every step's line is
+//! printed, then the summary and the result checks: one merge, into the left block; the
+//! page counts after it; every node coordinate and velocity finite after every step; no
+//! step that failed to advance the state; the book at rest at the end.
+
+use cortex_m_semihosting::hprintln;
+use folio_geometry::BlockSide;
+use folio_kernels::Vec3Ops;
+use folio_solvers::StepStatus;
+use folio_solvers::book::{Book, BookSettings, PageCounts, Phase, Script};
+
+use crate::Real;
+use crate::clock::Clock;
+use crate::heap::{CountingHeap, HeapStats};
+use crate::stats::{StepCounts, Summary};
+
+/// The recorded page turn (module docs).
+const PAGE_TURN: &str = include_str!("../../tests/fixtures/page_turn.input");
+
+/// What the run measured (instructions are SysTick ticks times the calibrated factor).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TurnReport {
+    /// `Book::new`: instructions, including the settling of the blocks.
+    pub setup_instructions: u64,
+    /// Steps `Book::new` took to settle the blocks.
+    pub settle_steps: u32,
+    /// Heap held by the parsed script (bytes).
+    pub script_heap: usize,
+    /// Heap held after `Book::new` (bytes, the script's included).
+    pub setup_heap: usize,
+    /// Steps with an active page (held or released).
+    pub active: Summary,
+    /// Steps of the book at rest.
+    pub resting: Summary,
+    /// Most instructions of the inputs (grab, drag, release) before one step.
+    pub input_max: u64,
+    /// Allocation calls made inside `Book::step` (setup allocates; stepping should not).
+    pub step_allocations: usize,
+    /// Allocation calls made by the inputs (a grab lays a new page).
+    pub input_allocations: usize,
+    /// Heap counts at the end.
+    pub heap: HeapStats,
+    /// The result checks.
+    pub checks: Checks,
+}
+
+/// The result checks (module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Checks {
+    /// Merges, and the frame and block of the first.
+    pub merges: u32,
+    /// Frame and block of the first merge.
+    pub first_merge: Option<(u32, BlockSide)>,
+    /// Page counts at the start and at the end.
+    pub counts: [PageCounts; 2],
+    /// Steps after which some coordinate or velocity was not finite.
+    pub nonfinite_steps: u32,
+    /// Steps that did not advance the state.
+    pub stalled_steps: u32,
+    /// The phase after the last step.
+    pub final_phase: Phase,
+}
+
+impl Checks {
+    /// The page merged once, into the left block.
+    #[must_use]
+    pub fn merged_left(&self) -> bool {
+        self.merges == 1 && matches!(self.first_merge, Some((_, BlockSide::Left)))
+    }
+
+    /// The left block gained the page the right block lost, and none is held.
+    #[must_use]
+    pub fn counts_moved(&self) -> bool {
+        let [before, after] = self.counts;
+        after.left == before.left + 1 && after.right + 1 == before.right && after.active == 0
+    }
+
+    /// Every check passed.
+    #[must_use]
+    pub fn passed(&self) -> bool {
+        self.merged_left()
+            && self.counts_moved()
+            && self.nonfinite_steps == 0
+            && self.stalled_steps == 0
+            && self.final_phase == Phase::AtRest
+    }
+}
+
+/// Why the run could not finish.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum TurnError {
+    /// The fixture does not parse (its 1-based line).
+    Script {
+        /// 1-based line.
+        line: usize,
+    },
+    /// `Book::new` refused the default settings.
+    Setup,
+    /// An input was refused at this frame.
+    Input {
+        /// Frame.
+        frame: u32,
+    },
+    /// `Book::step` returned an error at this frame.
+    Step {
+        /// Frame.
+        frame: u32,
+    },
+    /// The fixture has more frames than [`crate::stats::MAX_STEPS`].
+    TooManyFrames {
+        /// Frames in the fixture.
+        frames: u32,
+    },
+}
+
+impl core::fmt::Display for TurnError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::Script { line } => {
+                write!(f, "the page-turn fixture does not parse (line {line})")
+            }
+            Self::Setup => write!(f, "Book::new refused the default settings"),
+            Self::Input { frame } => write!(f, "an input was refused at frame {frame}"),
+            Self::Step { frame } => write!(f, "Book::step failed at frame {frame}"),
+            Self::TooManyFrames { frames } => {
+                write!(f, "the fixture has {frames} frames, too many")
+            }
+        }
+    }
+}
+
+/// Lowercase name of a phase.
+fn phase_name(phase: Phase) -> &'static str {
+    match phase {
+        Phase::AtRest => "rest",
+        Phase::Held => "held",
+        Phase::Released => "released",
+    }
+}
+
+/// Lowercase name of a step status.
+fn status_name(status: StepStatus) -> &'static str {
+    match status {
+        StepStatus::Converged => "converged",
+        StepStatus::IterationLimit => "iteration-limit",
+        StepStatus::LineSearchFailed => "line-search-failed",
+        StepStatus::NumericalFailure => "numerical-failure",
+        StepStatus::NonFiniteInput => "non-finite-input",
+        _ => "other",
+    }
+}
+
+/// Every node position and velocity of `book` is finite.
+fn all_finite(book: &Book<Real>) -> bool {
+    let state = book.state();
+    state
+        .x
+        .iter()
+        .chain(&state.v)
+        .all(|p| p.x().is_finite() && p.y().is_finite() && p.z().is_finite())
+}
+
+/// Plays the page turn, printing one line per step; `factor` is instructions per SysTick
+/// tick ([`crate::clock::Calibration::factor`]).
+///
+/// # Errors
+/// [`TurnError`] when the fixture, the setup, an input or a step is refused.
+pub fn run(clock: &Clock, factor: u64, heap: &CountingHeap) -> Result<TurnReport, TurnError> {
+    let script = Script::parse(PAGE_TURN).map_err(|e| TurnError::Script { line: e.line })?;
+    if script.frames as usize > crate::stats::MAX_STEPS {
+        return Err(TurnError::TooManyFrames {
+            frames: script.frames,
+        });
+    }
+    let script_heap = heap.stats().current;
+
+    let t0 = clock.now();
+    let mut book = Book::<Real>::new(BookSettings::default()).map_err(|_| TurnError::Setup)?;
+    let setup_instructions = (clock.now() - t0) * factor;
+    let setup_heap = heap.stats().current;
+    hprintln!(
+        "book: built in {} instructions ({} settling steps), {} heap bytes held ({} of them the parsed script)",
+        setup_instructions,
+        book.settle_steps(),
+        setup_heap,
+        script_heap
+    );
+    hprintln!(
+        "step frame phase status instructions dofs rows iterations halvings corrections collision-rounds"
+    );
+
+    let mut active = StepCounts::new();
+    let mut resting = StepCounts::new();
+    let mut checks = Checks {
+        merges: 0,
+        first_merge: None,
+        counts: [book.counts(); 2],
+        nonfinite_steps: 0,
+        stalled_steps: 0,
+        final_phase: book.phase(),
+    };
+    let (mut input_max, mut step_allocations, mut input_allocations) = (0, 0, 0);
+    for frame in 0..script.frames {
+        let before_input = heap.stats().allocations;
+        let t_input = clock.now();
+        for event in script.events_at(frame) {
+            book.apply(script.camera, script.forward, event.action)
+                .map_err(|_| TurnError::Input { frame })?;
+        }
+        input_max = input_max.max((clock.now() - t_input) * factor);
+        let before_step = heap.stats().allocations;
+        input_allocations += before_step - before_input;
+
+        let t_step = clock.now();
+        let report = book.step();
+        let instructions = (clock.now() - t_step) * factor;
+        step_allocations += heap.stats().allocations - before_step;
+        let report = report.map_err(|_| TurnError::Step { frame })?;
+
+        if report.phase == Phase::AtRest {
+            resting.push(frame, instructions);
+        } else {
+            active.push(frame, instructions);
+        }
+        if !report.solver.status.advanced() {
+            checks.stalled_steps += 1;
+        }
+        if !all_finite(&book) {
+            checks.nonfinite_steps += 1;
+        }
+        if let Some(side) = report.merged {
+            checks.merges += 1;
+            checks.first_merge.get_or_insert((frame, side));
+        }
+        hprintln!(
+            "step {} {} {} {} {} {} {} {} {} {}{}",
+            frame,
+            phase_name(report.phase),
+            status_name(report.solver.status),
+            instructions,
+            report.dofs,
+            report.constraint_rows,
+            report.solver.iterations,
+            report.solver.halvings,
+            report.correction.steps,
+            report.collision_rounds,
+            match report.merged {
+                Some(BlockSide::Left) => " merged-left",
+                Some(BlockSide::Right) => " merged-right",
+                None => "",
+            }
+        );
+    }
+    checks.counts[1] = book.counts();
+    checks.final_phase = book.phase();
+    Ok(TurnReport {
+        setup_instructions,
+        settle_steps: book.settle_steps(),
+        script_heap,
+        setup_heap,
+        active: active.summary(),
+        resting: resting.summary(),
+        input_max,
+        step_allocations,
+        input_allocations,
+        heap: heap.stats(),
+        checks,
+    })
+}
+
+/// The coordinate type's name, for the output.
+#[must_use]
+pub fn precision() -> &'static str {
+    core::any::type_name::<Real>()
+}
