@@ -37,6 +37,8 @@ pub struct Kkt<T> {
     pub values: Vec<T>,
     /// Natural size of each pivot (new order), the unit of the regularization thresholds.
     pivot_scale: Vec<T>,
+    /// Symmetric equilibration $D$ (see [`Kkt::set_equilibration`]).
+    equilibration: Option<Equilibration<T>>,
     scratch: Vec<T>,
     residual: Vec<T>,
     correction: Vec<T>,
@@ -54,10 +56,25 @@ impl<T: Real> Kkt<T> {
             symbolic,
             pattern,
             pivot_scale: vec![T::ONE; n],
+            equilibration: None,
             scratch: vec![T::ZERO; n],
             residual: vec![T::ZERO; n],
             correction: vec![T::ZERO; n],
         }
+    }
+
+    /// Factorizes $\tilde K = D K D$ instead of $K$, with $D$ from [`RUIZ_PASSES`] passes of
+    /// Ruiz's symmetric scaling ($d_i \leftarrow d_i / \sqrt{\max_j |\tilde K_{ij}|}$), so
+    /// that every row of $\tilde K$ has its largest entry near 1; solves then return
+    /// $z = D \tilde K^{-1} D b$. Allocates its buffers when switched on.
+    pub fn set_equilibration(&mut self, on: bool) {
+        let n = self.pattern.order();
+        self.equilibration = on.then(|| Equilibration {
+            d: vec![T::ONE; n],
+            largest: vec![T::ZERO; n],
+            values: vec![T::ZERO; self.pattern.nnz()],
+            rhs: vec![T::ZERO; n],
+        });
     }
 
     /// `out = K z` with the full symmetric matrix from its upper triangle.
@@ -78,19 +95,28 @@ impl<T: Real> Kkt<T> {
         }
     }
 
+    /// $z = K^{-1} b$ with the current factor (through $D$ when equilibrated).
+    fn solve_factor(&mut self, out: &mut [T], b: &[T]) {
+        match &mut self.equilibration {
+            Some(e) => {
+                for ((r, &bi), &di) in e.rhs.iter_mut().zip(b).zip(&e.d) {
+                    *r = bi * di;
+                }
+                self.factor
+                    .solve(&self.symbolic, out, &e.rhs, &mut self.scratch);
+                for (o, &di) in out.iter_mut().zip(&e.d) {
+                    *o *= di;
+                }
+            }
+            None => self.factor.solve(&self.symbolic, out, b, &mut self.scratch),
+        }
+    }
+
     /// Largest primal diagonal magnitude, the scale of the regularization thresholds (1 if
     /// the primal block has a zero diagonal).
     #[must_use]
     pub fn primal_scale(&self) -> T {
-        let mut scale = T::ZERO;
-        for k in 0..self.pattern.dofs {
-            let v = self.values[self.pattern.diagonal_slot(k)];
-            let v = if v < T::ZERO { -v } else { v };
-            if v > scale {
-                scale = v;
-            }
-        }
-        if scale > T::ZERO { scale } else { T::ONE }
+        primal_scale(&self.pattern, &self.values)
     }
 
     /// Numeric factorization on the reused symbolic analysis; pivot $k$ with
@@ -99,17 +125,22 @@ impl<T: Real> Kkt<T> {
     /// ([`Kkt::primal_scale`]); that of constraint row $c$ is the size of its Schur complement
     /// $J_c H^{-1} J_c^\top \approx \lVert J_c\rVert_2^2 / P$.
     pub fn factorize(&mut self, epsilon_rel: T, delta_rel: T) -> FactorOutcome {
-        let primal = self.primal_scale();
         let p = &self.pattern;
+        let values: &[T] = match &mut self.equilibration {
+            Some(e) => {
+                e.update(p, &self.values);
+                &e.values
+            }
+            None => &self.values,
+        };
+        let primal = primal_scale(p, values);
         for (new, &old) in self.symbolic.perm.iter().enumerate() {
             let old = old as usize;
             self.pivot_scale[new] = if old < p.dofs {
                 primal
             } else {
-                let mut sum = T::ZERO;
-                for s in p.col_ptr[old] as usize..p.diagonal_slot(old) {
-                    sum += self.values[s] * self.values[s];
-                }
+                let column = &values[p.col_ptr[old] as usize..p.diagonal_slot(old)];
+                let sum = column.iter().fold(T::ZERO, |acc, &v| acc + v * v);
                 if sum > T::ZERO {
                     sum / primal
                 } else {
@@ -119,7 +150,7 @@ impl<T: Real> Kkt<T> {
         }
         self.factor.factor(
             &self.symbolic,
-            &self.values,
+            values,
             &self.pivot_scale,
             epsilon_rel,
             delta_rel,
@@ -177,7 +208,7 @@ impl<T: Real> Kkt<T> {
         target: T,
     ) -> Refinement<T> {
         let b_norm = max_abs(b);
-        self.factor.solve(&self.symbolic, z, b, &mut self.scratch);
+        self.solve_factor(z, b);
         if b_norm == T::ZERO {
             return Refinement {
                 relative_residual: T::ZERO,
@@ -187,12 +218,12 @@ impl<T: Real> Kkt<T> {
         let mut relative = self.residual_into(z, b) / b_norm;
         let mut steps = 0;
         while steps < max_steps && relative > target {
-            self.factor.solve(
-                &self.symbolic,
-                &mut self.correction,
-                &self.residual,
-                &mut self.scratch,
+            let (mut correction, residual) = (
+                core::mem::take(&mut self.correction),
+                core::mem::take(&mut self.residual),
             );
+            self.solve_factor(&mut correction, &residual);
+            (self.correction, self.residual) = (correction, residual);
             for (zi, ci) in z.iter_mut().zip(&self.correction) {
                 *zi += *ci;
             }
@@ -236,4 +267,69 @@ pub fn max_abs<T: Real>(v: &[T]) -> T {
         }
     }
     m
+}
+
+/// Largest primal diagonal magnitude of the upper-triangle `values` (1 if zero).
+fn primal_scale<T: Real>(p: &KktPattern, values: &[T]) -> T {
+    let mut scale = T::ZERO;
+    for k in 0..p.dofs {
+        let v = values[p.diagonal_slot(k)];
+        let v = if v < T::ZERO { -v } else { v };
+        if v > scale {
+            scale = v;
+        }
+    }
+    if scale > T::ZERO { scale } else { T::ONE }
+}
+
+/// Passes of Ruiz's scaling per factorization ([`Kkt::set_equilibration`]).
+pub const RUIZ_PASSES: usize = 4;
+
+/// The scaling $D$ and the scaled values of [`Kkt::set_equilibration`].
+#[derive(Clone, Debug)]
+struct Equilibration<T> {
+    d: Vec<T>,
+    largest: Vec<T>,
+    values: Vec<T>,
+    rhs: Vec<T>,
+}
+
+impl<T: Real> Equilibration<T> {
+    /// Recomputes $D$ for `values` (Ruiz: each pass divides $d_i$ by the square root of the
+    /// largest magnitude in row $i$ of $D K D$) and writes $D K D$ into `self.values`.
+    fn update(&mut self, p: &KktPattern, values: &[T]) {
+        self.d.iter_mut().for_each(|d| *d = T::ONE);
+        for _ in 0..RUIZ_PASSES {
+            self.largest.iter_mut().for_each(|m| *m = T::ZERO);
+            for c in 0..p.order() {
+                let range = p.col_ptr[c] as usize..p.col_ptr[c + 1] as usize;
+                for (&r, &value) in p.row_idx[range.clone()].iter().zip(&values[range]) {
+                    let r = r as usize;
+                    let v = self.d[r] * value * self.d[c];
+                    let a = if v < T::ZERO { -v } else { v };
+                    for k in [r, c] {
+                        if a > self.largest[k] {
+                            self.largest[k] = a;
+                        }
+                    }
+                }
+            }
+            for (d, &m) in self.d.iter_mut().zip(&self.largest) {
+                if m > T::ZERO && m.is_finite() {
+                    *d /= folio_kernels::math::sqrt(m);
+                }
+            }
+        }
+        for c in 0..p.order() {
+            let range = p.col_ptr[c] as usize..p.col_ptr[c + 1] as usize;
+            let rows = &p.row_idx[range.clone()];
+            for ((out, &value), &r) in self.values[range.clone()]
+                .iter_mut()
+                .zip(&values[range])
+                .zip(rows)
+            {
+                *out = self.d[r as usize] * value * self.d[c];
+            }
+        }
+    }
 }

@@ -154,11 +154,13 @@ impl<T: Real> Solver<T> {
         self.work = None;
         let pattern = KktPattern::build(model, s.constraint_hessian)?;
         let (dofs, rows, nodes) = (pattern.dofs, pattern.rows, model.node_count());
+        let mut kkt = Kkt::new(pattern, s.ordering);
+        kkt.set_equilibration(s.equilibrate);
         let n = dofs + rows;
         self.work = Some(Workspace {
             version: model.topology_version(),
             ordering: s.ordering,
-            kkt: Kkt::new(pattern, s.ordering),
+            kkt,
             rhs: vec![T::ZERO; n],
             product: vec![T::ZERO; n],
             solution: vec![T::ZERO; n],

@@ -22,6 +22,8 @@ struct Run {
     nonfinite_frames: usize,
     /// Steps whose solver did not advance the state (a frozen frame).
     stalled_steps: usize,
+    /// Worst relative residual of a step's KKT solves.
+    linear_residual_max: f64,
     merged: Vec<(u32, BlockSide)>,
     positions: Vec<f64>,
 }
@@ -39,6 +41,9 @@ fn play<T: Real>(text: &str) -> (Book<T>, Run) {
         if !report.solver.status.advanced() {
             run.stalled_steps += 1;
         }
+        run.linear_residual_max = run
+            .linear_residual_max
+            .max(report.solver.linear_residual.to_f64());
         if let Some(side) = report.merged {
             run.merged.push((frame, side));
         }
@@ -122,8 +127,20 @@ fn page_turn_is_deterministic() {
 #[test]
 fn page_turn_runs_in_f32() {
     let (book, run) = play::<f32>(PAGE_TURN);
+    eprintln!(
+        "f32 page turn: worst KKT relative residual {:.1e}, max DOG residual {:.1e}, merged {:?}",
+        run.linear_residual_max, run.dog_max, run.merged
+    );
     assert_eq!(run.nonfinite_frames, 0);
     assert_eq!(run.stalled_steps, 0);
+    // Without equilibration the f32 factor left solves with relative residuals of 1e20 and
+    // a DOG residual of 1.5e-3 (`Settings::equilibrate`); equilibrated: 8e-4 and 1.9e-4.
+    assert!(
+        run.linear_residual_max < 1e-2,
+        "{}",
+        run.linear_residual_max
+    );
+    assert!(run.dog_max < 1e-3, "{}", run.dog_max);
     assert_eq!(run.merged.first().map(|m| m.1), Some(BlockSide::Left));
     assert_eq!(book.counts().left, 51);
 }

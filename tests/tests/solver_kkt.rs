@@ -138,3 +138,75 @@ fn matrix_market_export_reads_back() {
     let diff = max_rel(&own, &read_back);
     assert!(diff <= 1e-14, "product differs by {diff:e}");
 }
+
+/// Ruiz equilibration (`Kkt::set_equilibration`) solves the same system: in f64 the
+/// solution matches the unscaled factor's; in f32 it keeps the residual small on a KKT whose
+/// rows were rescaled over six orders of magnitude, where the unscaled factor does not.
+#[test]
+fn equilibration_solves_the_same_system_and_survives_bad_scaling() {
+    let plain = Settings {
+        equilibrate: false,
+        ..Settings::default()
+    };
+    let (sheet, state) = sheet_and_state::<f64>(3);
+    let mut solver = Solver::new(plain).unwrap();
+    let (mut kkt, rhs, z_plain, _) = solve(&mut solver, &sheet, &state);
+    kkt.set_equilibration(true);
+    kkt.factorize(plain.pivot_epsilon, plain.regularization);
+    let mut z = vec![0.0; rhs.len()];
+    kkt.solve_refined(
+        &mut z,
+        &rhs,
+        plain.refinement_steps,
+        plain.refinement_tolerance,
+    );
+    let diff = max_rel(&z_plain, &z);
+    let r = residual_f64(&kkt, &z, &rhs);
+    println!("f64: equilibrated vs plain solution {diff:.1e}, residual {r:.1e}");
+    // Both are refined solutions with residuals near 1e-12 to 1e-10; the solutions differ
+    // by the condition number times that.
+    assert!(r <= 1e-10 && diff <= 1e-7, "{r:e} {diff:e}");
+
+    let plain = Settings::<f32> {
+        equilibrate: false,
+        ..Settings::default()
+    };
+    let (sheet, state) = sheet_and_state::<f32>(3);
+    let mut solver = Solver::new(plain).unwrap();
+    let (mut kkt, mut rhs, _, _) = solve(&mut solver, &sheet, &state);
+    // S K S and S b, S_i = 10^((i mod 7) - 3): the same solution up to S.
+    let scale = |i: usize| 10f32.powi((i % 7) as i32 - 3);
+    for c in 0..kkt.pattern.order() {
+        for s in kkt.pattern.col_ptr[c] as usize..kkt.pattern.col_ptr[c + 1] as usize {
+            let r = kkt.pattern.row_idx[s] as usize;
+            kkt.values[s] *= scale(r) * scale(c);
+        }
+    }
+    for (i, b) in rhs.iter_mut().enumerate() {
+        *b *= scale(i);
+    }
+    // The residual of the unscaled factor's solution, or infinity when it is not finite.
+    let mut residual = [0.0; 2];
+    for (k, on) in [false, true].into_iter().enumerate() {
+        kkt.set_equilibration(on);
+        kkt.factorize(plain.pivot_epsilon, plain.regularization);
+        let mut z = vec![0.0f32; rhs.len()];
+        kkt.solve_refined(
+            &mut z,
+            &rhs,
+            plain.refinement_steps,
+            plain.refinement_tolerance,
+        );
+        residual[k] = if z.iter().all(|v| v.is_finite()) {
+            residual_f64(&kkt, &z, &rhs)
+        } else {
+            f64::INFINITY
+        };
+    }
+    println!(
+        "f32, rows scaled 1e-3..1e3: residual plain {:.1e}, equilibrated {:.1e}",
+        residual[0], residual[1]
+    );
+    assert!(residual[1] <= 1e-3, "{:e}", residual[1]);
+    assert!(residual[1] < residual[0], "{residual:?}");
+}
