@@ -42,6 +42,8 @@ pub struct Kkt<T> {
     scratch: Vec<T>,
     residual: Vec<T>,
     correction: Vec<T>,
+    /// The iterate before a refinement step, restored if the step raised the residual.
+    previous: Vec<T>,
 }
 
 impl<T: Real> Kkt<T> {
@@ -60,6 +62,7 @@ impl<T: Real> Kkt<T> {
             scratch: vec![T::ZERO; n],
             residual: vec![T::ZERO; n],
             correction: vec![T::ZERO; n],
+            previous: vec![T::ZERO; n],
         }
     }
 
@@ -197,9 +200,11 @@ impl<T: Real> Kkt<T> {
         }
     }
 
-    /// Solves $K z = b$ with the current factor, then refines $z \leftarrow z + \hat K^{-1}(b - K z)$
-    /// until the relative residual is at most `target`, stops falling by half, or
-    /// `max_steps` refinements are done.
+    /// Solves $K z = b$ with the current factor, then refines
+    /// $z \leftarrow z + \hat K^{-1}(b - K z)$ until the relative residual
+    /// $\lVert b - Kz\rVert_\infty / \lVert b\rVert_\infty$ is at most `target`, a step stops
+    /// lowering it (that step is undone: the better iterate is returned), or `max_steps`
+    /// steps are done.
     pub fn solve_refined(
         &mut self,
         z: &mut [T],
@@ -218,19 +223,23 @@ impl<T: Real> Kkt<T> {
         let mut relative = self.residual_into(z, b) / b_norm;
         let mut steps = 0;
         while steps < max_steps && relative > target {
+            self.previous.copy_from_slice(z);
             let (mut correction, residual) = (
                 core::mem::take(&mut self.correction),
                 core::mem::take(&mut self.residual),
             );
             self.solve_factor(&mut correction, &residual);
-            (self.correction, self.residual) = (correction, residual);
-            for (zi, ci) in z.iter_mut().zip(&self.correction) {
+            for (zi, ci) in z.iter_mut().zip(&correction) {
                 *zi += *ci;
             }
+            (self.correction, self.residual) = (correction, residual);
             steps += 1;
-            let previous = relative;
+            let before = relative;
             relative = self.residual_into(z, b) / b_norm;
-            if !relative.is_finite() || relative >= previous {
+            if relative.partial_cmp(&before) != Some(core::cmp::Ordering::Less) {
+                // The step lost (rounding, a nearly singular factor): keep the better z.
+                z.copy_from_slice(&self.previous);
+                relative = before;
                 break;
             }
         }

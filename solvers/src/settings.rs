@@ -50,8 +50,8 @@ pub struct Settings<T> {
     /// Default: on in `f32`, off in `f64`. The book's KKT spans masses over $h^2$, isometry
     /// weights of thousands and contact springs; in `f32` its unscaled factor left solves
     /// with relative residuals up to $10^{20}$ on the page turn, and the DOG residual at
-    /// 1.5e-3. Equilibrated: worst residual 8e-4, DOG residual 1.9e-4, the merge at frame
-    /// 178 (f64: 231), for 16 % more time. In `f64` refinement already reaches 1e-8 and the
+    /// 1.5e-3. Equilibrated: worst residual 1.2e-4, DOG residual 3.3e-4, the merge at frame
+    /// 183 (f64: 231), for about 16 % more time. In `f64` refinement already reaches 1e-8 and the
     /// four scaling passes would cost 25 %.
     pub equilibrate: bool,
     /// A pivot with $s_k d_k \le$ `pivot_epsilon` $\cdot$ scale is regularized (scale: the

@@ -54,6 +54,8 @@ impl<T: Real> State<T> {
 struct Workspace<T: Real> {
     version: u64,
     ordering: Ordering,
+    /// [`Settings::equilibrate`] as the KKT was set up.
+    equilibrate: bool,
     kkt: Kkt<T>,
     /// Right-hand side, then product scratch, then solution: `dofs + rows` each.
     rhs: Vec<T>,
@@ -147,6 +149,7 @@ impl<T: Real> Solver<T> {
             if w.version == model.topology_version()
                 && w.ordering == s.ordering
                 && w.kkt.pattern.with_constraint_hessian == s.constraint_hessian
+                && w.equilibrate == s.equilibrate
             {
                 return Ok(false);
             }
@@ -160,6 +163,7 @@ impl<T: Real> Solver<T> {
         self.work = Some(Workspace {
             version: model.topology_version(),
             ordering: s.ordering,
+            equilibrate: s.equilibrate,
             kkt,
             rhs: vec![T::ZERO; n],
             product: vec![T::ZERO; n],

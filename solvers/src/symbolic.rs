@@ -86,25 +86,28 @@ impl Symbolic {
 
         let parent = elimination_tree(n, &a_ptr, &a_row);
 
-        // Row patterns: the etree paths from each entry of column k up to k.
+        // Row patterns: the etree paths from each entry of column k up to k. Counted first
+        // so that the lists are allocated at their exact length (the factor's index arrays
+        // are the largest allocation on a microcontroller).
         let mut row_ptr = vec![0u32; n + 1];
-        let mut row_col = Vec::new();
         let mut mark = vec![NONE; n];
-        let mut col_count = vec![0u32; n + 1];
         for k in 0..n {
-            mark[k] = k as u32;
-            let start = row_col.len();
-            for &i in &a_row[a_ptr[k] as usize..a_ptr[k + 1] as usize] {
-                let mut j = i as usize;
-                while mark[j] != k as u32 {
-                    mark[j] = k as u32;
-                    row_col.push(j as u32);
-                    col_count[j + 1] += 1;
-                    j = parent[j] as usize;
-                }
-            }
-            row_col[start..].sort_unstable();
-            row_ptr[k + 1] = row_col.len() as u32;
+            let mut count = 0;
+            row_walk(k, &a_ptr, &a_row, &parent, &mut mark, |_| count += 1);
+            row_ptr[k + 1] = row_ptr[k] + count;
+        }
+        let mut row_col = vec![0u32; row_ptr[n] as usize];
+        let mut col_count = vec![0u32; n + 1];
+        mark.iter_mut().for_each(|m| *m = NONE);
+        for (k, &start) in row_ptr.iter().enumerate().take(n) {
+            let start = start as usize;
+            let mut at = start;
+            row_walk(k, &a_ptr, &a_row, &parent, &mut mark, |j| {
+                row_col[at] = j as u32;
+                col_count[j + 1] += 1;
+                at += 1;
+            });
+            row_col[start..at].sort_unstable();
         }
         let structural_zero = (0..n)
             .map(|k| signs_of(&perm, pattern.dofs, k) < 0 && row_ptr[k] == row_ptr[k + 1])
@@ -157,6 +160,28 @@ impl Symbolic {
                 c * (c - 1.0) + 3.0 * c
             })
             .sum()
+    }
+}
+
+/// Calls `visit` on every column $j < k$ of row $k$ of $L$: the elimination-tree paths from
+/// the entries of column $k$ of the permuted upper matrix up to $k$ (`mark` holds, per
+/// column, the last row that visited it).
+fn row_walk(
+    k: usize,
+    a_ptr: &[u32],
+    a_row: &[u32],
+    parent: &[u32],
+    mark: &mut [u32],
+    mut visit: impl FnMut(usize),
+) {
+    mark[k] = k as u32;
+    for &i in &a_row[a_ptr[k] as usize..a_ptr[k + 1] as usize] {
+        let mut j = i as usize;
+        while mark[j] != k as u32 {
+            mark[j] = k as u32;
+            visit(j);
+            j = parent[j] as usize;
+        }
     }
 }
 
