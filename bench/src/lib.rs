@@ -4,6 +4,7 @@
 pub mod book;
 pub mod kkt;
 pub mod pages;
+pub mod tearing;
 
 use folio_kernels::Real;
 use folio_kernels::real::Vec3Ops;

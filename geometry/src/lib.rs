@@ -7,6 +7,8 @@
 //!   hard cover, and the rest shape of a page lying on a block.
 //! - [`collision`]: the 2D collision projection of Sec. 3.4.
 //! - [`mesh`]: the triangle mesh for rendering of Sec. 3.5.
+//! - [`sheet`]: the tearing sheet of seed `002_…`: a coarse triangle mesh with its 2D
+//!   pattern, the edits of a tear, and the generalized-cone layer.
 //!
 //! Axes (seed Sec. 3.1): X across the open book, Y up (pages stack along Y, gravity is −Y),
 //! Z along the binding. Lengths in page units (a page is 12 wide by default).
@@ -18,7 +20,9 @@ pub mod collision;
 pub mod grid;
 pub mod layout;
 pub mod mesh;
+pub mod sheet;
 
 pub use collision::{Contacts, Floor, Obstacle, Wall};
 pub use grid::{QuadGrid, Star};
 pub use layout::{BlockSide, BookLayout, BookParams, LayoutError};
+pub use sheet::{SheetError, SheetMesh};

@@ -13,6 +13,16 @@ pub enum KernelError {
         /// Which edge of the term.
         index: usize,
     },
+    /// A rest triangle of a 2D pattern is degenerate or wrongly oriented: its signed area
+    /// (counter-clockwise positive, nodes in the term's documented order) is zero, negative,
+    /// not above the relative threshold of [`crate::membrane`] or not finite, or the
+    /// triangle is too small to carry a length (longest edge below
+    /// [`crate::Real::LENGTH_FLOOR`]); `index` names the triangle in the term's documented
+    /// order.
+    NonPositiveRestArea {
+        /// Which triangle of the term.
+        index: usize,
+    },
     /// A parameter is NaN or infinite.
     NonFiniteParameter {
         /// The parameter's name as in the constructor.
@@ -32,6 +42,12 @@ impl fmt::Display for KernelError {
                 write!(
                     f,
                     "rest length of edge {index} is not a positive finite length"
+                )
+            }
+            Self::NonPositiveRestArea { index } => {
+                write!(
+                    f,
+                    "rest triangle {index} is degenerate or not counter-clockwise in the pattern"
                 )
             }
             Self::NonFiniteParameter { name } => write!(f, "parameter `{name}` is not finite"),
@@ -71,5 +87,30 @@ pub(crate) fn squared_rest_length<T: Real>(l: T) -> Result<T, KernelError> {
         })
     } else {
         Ok(l * l)
+    }
+}
+
+/// Twice the signed area $2A = (u_1 - u_0) \times (u_2 - u_0)$ of a rest triangle of a 2D
+/// pattern, if it is usable: finite, counter-clockwise and not a sliver, i.e.
+/// $2A > \sqrt{\varepsilon}\,\ell_{\max}^2$ with $\ell_{\max}$ the longest edge and
+/// $\ell_{\max} \ge$ [`Real::LENGTH_FLOOR`]. Else [`KernelError::NonPositiveRestArea`].
+pub(crate) fn rest_triangle_area2<T: Real>(u: [[T; 2]; 3], index: usize) -> Result<T, KernelError> {
+    let edge = |a: [T; 2], b: [T; 2]| [b[0] - a[0], b[1] - a[1]];
+    let (e1, e2, e3) = (edge(u[0], u[1]), edge(u[0], u[2]), edge(u[1], u[2]));
+    let sq = |e: [T; 2]| e[0] * e[0] + e[1] * e[1];
+    let (l1, l2, l3) = (sq(e1), sq(e2), sq(e3));
+    let longest = if l1 > l2 { l1 } else { l2 };
+    let longest = if longest > l3 { longest } else { l3 };
+    let area2 = e1[0] * e2[1] - e1[1] * e2[0];
+    let usable = l1.is_finite()
+        && l2.is_finite()
+        && l3.is_finite()
+        && area2.is_finite()
+        && longest >= T::LENGTH_FLOOR * T::LENGTH_FLOOR
+        && area2 > crate::math::sqrt(T::EPSILON) * longest;
+    if usable {
+        Ok(area2)
+    } else {
+        Err(KernelError::NonPositiveRestArea { index })
     }
 }

@@ -2,7 +2,10 @@
 //!
 //! Per-element math of Folio's paper models, generic over [`Real`] (`f32`, `f64`):
 //! every constraint and potential of the DOG book model (seed `000_…`, eq. 5-14), the Provot
-//! springs of the mass-spring page (seed `003_…`) and the conical page curl (seed `001_…`).
+//! springs of the mass-spring page (seed `003_…`), the conical page curl (seed `001_…`) and
+//! the triangle sheet that tears (seed `002_…`): its Saint Venant–Kirchhoff membrane
+//! ([`membrane`], the in-plane stretching forces of Sec. 5.1) and its quadratic hinge
+//! bending ([`hinge`]) on a flat 2D rest pattern.
 //!
 //! Each term evaluates on a small fixed-size local block of node positions
 //! `[T::Vec3; N]` and returns values, gradients (one `Vec3` per node) and Hessians
@@ -32,10 +35,12 @@ pub mod error;
 pub mod fix;
 pub mod glue;
 pub mod gravity;
+pub mod hinge;
 pub mod iso2d;
 pub mod iso3d;
 pub mod lanes;
 pub mod math;
+pub mod membrane;
 pub mod positional;
 pub mod real;
 pub mod spring;

@@ -47,6 +47,54 @@ pub fn abs<T: Real>(x: T) -> T {
     x.abs_impl()
 }
 
+/// Largest integer not above `x`, $\lfloor x \rfloor$ (NaN and infinities pass through).
+#[inline(always)]
+#[must_use]
+pub fn floor<T: Real>(x: T) -> T {
+    by_precision(x, floor_f32, floor_f64)
+}
+
+/// Exponential $e^x$ (0 for $x \to -\infty$, $+\infty$ on overflow).
+#[inline(always)]
+#[must_use]
+pub fn exp<T: Real>(x: T) -> T {
+    by_precision(x, exp_f32, exp_f64)
+}
+
+/// Applies the `f32` or the `f64` backend function to `x`, whichever `T` is. [`Real`] is
+/// sealed to exactly these two types, told apart by their machine epsilon (a constant, so
+/// the branch folds away); the conversions between `T` and the chosen type are exact.
+/// (Used by shims added after the sealed backend trait, which lives in `real.rs`.)
+#[inline(always)]
+fn by_precision<T: Real>(x: T, single: fn(f32) -> f32, double: fn(f64) -> f64) -> T {
+    if T::EPSILON.to_f64() == f64::from(f32::EPSILON) {
+        T::from_f64(f64::from(single(x.to_f64() as f32)))
+    } else {
+        T::from_f64(double(x.to_f64()))
+    }
+}
+
+macro_rules! backend_fn {
+    ($name:ident, $t:ident, $method:ident, $libm:ident) => {
+        #[inline(always)]
+        fn $name(x: $t) -> $t {
+            #[cfg(feature = "std")]
+            {
+                $t::$method(x)
+            }
+            #[cfg(not(feature = "std"))]
+            {
+                libm::$libm(x)
+            }
+        }
+    };
+}
+
+backend_fn!(floor_f32, f32, floor, floorf);
+backend_fn!(floor_f64, f64, floor, floor);
+backend_fn!(exp_f32, f32, exp, expf);
+backend_fn!(exp_f64, f64, exp, exp);
+
 /// Euclidean length $\lVert v \rVert = \sqrt{v \cdot v}$.
 #[inline(always)]
 #[must_use]
@@ -209,5 +257,32 @@ mod poly {
         /// 10 + 10 + 24 bits of pi.
         pub const PI_SPLIT: [f32; 3] = [3.140625, 0.0009679794311523438, -3.2584136988589307e-07];
         pub const ROUND_MAGIC: f32 = 12582912.0;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{exp, floor};
+
+    #[test]
+    fn floor_and_exp_in_both_precisions() {
+        let cases: [(f64, f64); 5] = [
+            (2.5, 2.0),
+            (-2.5, -3.0),
+            (-0.0, -0.0),
+            (7.0, 7.0),
+            (-1e-30, -1.0),
+        ];
+        for (x, f) in cases {
+            assert_eq!(floor(x).to_bits(), f.to_bits());
+            assert_eq!(floor(x as f32).to_bits(), (f as f32).to_bits());
+        }
+        assert!(floor(f64::NAN).is_nan() && floor(f32::INFINITY) == f32::INFINITY);
+        assert_eq!(exp(0.0f64), 1.0);
+        assert!((exp(1.0f64) - core::f64::consts::E).abs() < 4e-16);
+        assert!((exp(1.0f32) - core::f32::consts::E).abs() < 3e-7);
+        assert_eq!(exp(-1e3f64), 0.0);
+        assert_eq!(exp(-1e3f32), 0.0);
+        assert_eq!(exp(1e3f64), f64::INFINITY);
     }
 }

@@ -12,6 +12,7 @@
 //!   analysis, and the refined solve.
 //! - [`step`]: [`Solver::step`], one time step with a [`StepReport`].
 //! - [`matrix_market`]: export of the assembled KKT matrix.
+//! - `sheet` (feature `tearing`): the tearing sheet of seed `002_…`.
 //!
 //! Setup allocates; a step on an analysed topology does not (a test with a counting
 //! allocator holds this).
@@ -32,6 +33,8 @@ pub mod page;
 pub mod pattern;
 pub mod report;
 pub mod settings;
+#[cfg(feature = "tearing")]
+pub mod sheet;
 pub mod step;
 pub mod symbolic;
 

@@ -5,8 +5,10 @@ use folio_kernels::binding::Binding;
 use folio_kernels::contact::ContactPlane;
 use folio_kernels::fix::Fix;
 use folio_kernels::gravity::Gravity;
+use folio_kernels::hinge::Hinge;
 use folio_kernels::iso2d::Iso2d;
 use folio_kernels::iso3d::Iso3d;
+use folio_kernels::membrane::Membrane;
 use folio_kernels::positional::Positional;
 use folio_kernels::spring::Spring;
 use folio_kernels::{curve_laplacian, dog_laplacian};
@@ -105,4 +107,121 @@ fn bad_parameters_are_typed_errors() {
         KernelError::OutOfRange { name: "q" }.to_string(),
         "parameter `q` is out of its range"
     );
+}
+
+const TRIANGLE: [[f64; 2]; 3] = [[0.0, 0.0], [1.0, 0.0], [0.2, 0.9]];
+/// Edge (u0, u1) along X, u2 above it, u3 below it.
+const HINGE: [[f64; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [0.3, 0.8], [0.6, -0.7]];
+
+#[test]
+fn membrane_refuses_bad_patterns_and_parameters() {
+    let area = |index| KernelError::NonPositiveRestArea { index };
+    assert!(Membrane::new(TRIANGLE, 1.0, 0.3).is_ok());
+    assert!(Membrane::new(TRIANGLE.map(|p| p.map(|c| c as f32)), 1.0, 0.0).is_ok());
+    // Clockwise, collinear, coincident, sliver, below the length floor.
+    let [a, b, c] = TRIANGLE;
+    assert_eq!(Membrane::new([a, c, b], 1.0, 0.3).unwrap_err(), area(0));
+    let collinear = [[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]];
+    assert_eq!(Membrane::new(collinear, 1.0, 0.3).unwrap_err(), area(0));
+    assert_eq!(Membrane::new([a, a, a], 1.0, 0.3).unwrap_err(), area(0));
+    let sliver = [[0.0, 0.0], [1.0, 0.0], [0.5, 1e-9]];
+    assert_eq!(Membrane::new(sliver, 1.0, 0.3).unwrap_err(), area(0));
+    assert!(Membrane::new([[0.0, 0.0], [1.0, 0.0], [0.5, 1e-3]], 1.0, 0.3).is_ok());
+    // f32's threshold is sqrt(f32::EPSILON) ~ 3.5e-4 relative.
+    let sliver32 = [[0.0f32, 0.0], [1.0, 0.0], [0.5, 1e-4]];
+    assert_eq!(Membrane::new(sliver32, 1.0, 0.3).unwrap_err(), area(0));
+    let tiny = TRIANGLE.map(|p| p.map(|c| c * 1e-160));
+    assert_eq!(Membrane::new(tiny, 1.0, 0.3).unwrap_err(), area(0));
+    let overflowing = TRIANGLE.map(|p| p.map(|c| c * 1e300));
+    assert_eq!(Membrane::new(overflowing, 1.0, 0.3).unwrap_err(), area(0));
+    // Non-finite input names its field.
+    let mut nan = TRIANGLE;
+    nan[2][1] = f64::NAN;
+    assert_eq!(
+        Membrane::new(nan, 1.0, 0.3).unwrap_err(),
+        KernelError::NonFiniteParameter { name: "pattern" }
+    );
+    assert_eq!(
+        Membrane::new(TRIANGLE, f64::INFINITY, 0.3).unwrap_err(),
+        KernelError::NonFiniteParameter {
+            name: "stretch_modulus"
+        }
+    );
+    assert_eq!(
+        Membrane::new(TRIANGLE, 1.0, f64::NAN).unwrap_err(),
+        KernelError::NonFiniteParameter { name: "poisson" }
+    );
+    // Ranges: Y > 0, 0 <= nu < 1/2.
+    for y in [0.0, -1.0] {
+        assert_eq!(
+            Membrane::new(TRIANGLE, y, 0.3).unwrap_err(),
+            KernelError::OutOfRange {
+                name: "stretch_modulus"
+            }
+        );
+    }
+    for nu in [-0.1, 0.5, 0.7] {
+        assert_eq!(
+            Membrane::new(TRIANGLE, 1.0, nu).unwrap_err(),
+            KernelError::OutOfRange { name: "poisson" }
+        );
+    }
+    // Stored constants: rest area, plane-stress Lame parameters, D_m^{-1}.
+    let m = Membrane::new(TRIANGLE, 2.6, 0.3).unwrap();
+    assert!((m.rest_area - 0.45).abs() < 1e-15);
+    assert!((m.mu - 1.0).abs() < 1e-15);
+    assert!((m.lambda - 2.6 * 0.3 / 0.91).abs() < 1e-15);
+    let dm = [[1.0, 0.2], [0.0, 0.9]];
+    for (r, row) in dm.iter().enumerate() {
+        for c in 0..2 {
+            let prod: f64 = (0..2).map(|k| row[k] * m.dm_inv[k][c]).sum();
+            let id = if r == c { 1.0 } else { 0.0 };
+            assert!(
+                (prod - id).abs() < 1e-15,
+                "D_m D_m^-1 = {prod} at ({r},{c})"
+            );
+        }
+    }
+    assert_eq!(
+        area(3).to_string(),
+        "rest triangle 3 is degenerate or not counter-clockwise in the pattern"
+    );
+}
+
+#[test]
+fn hinge_refuses_bad_patterns() {
+    let area = |index| KernelError::NonPositiveRestArea { index };
+    assert!(Hinge::new(HINGE).is_ok());
+    let [u0, u1, u2, u3] = HINGE;
+    // Overlapping triangles: u3 on the same side of the edge as u2.
+    let above = [0.7, 0.5];
+    assert_eq!(Hinge::new([u0, u1, u2, above]).unwrap_err(), area(1));
+    // Mirrored (clockwise throughout): triangle 0 is named; swapping u2 and u3 fixes it.
+    assert_eq!(Hinge::new([u0, u1, u3, u2]).unwrap_err(), area(0));
+    assert_eq!(Hinge::new([u1, u0, u2, u3]).unwrap_err(), area(0));
+    // Degenerate triangles: u2 or u3 on the edge line, zero-length edge.
+    assert_eq!(Hinge::new([u0, u1, [2.0, 0.0], u3]).unwrap_err(), area(0));
+    assert_eq!(Hinge::new([u0, u1, u2, [0.5, 0.0]]).unwrap_err(), area(1));
+    assert_eq!(Hinge::new([u0, u0, u2, u3]).unwrap_err(), area(0));
+    assert_eq!(
+        Hinge::new([u0, u1, u2, [0.5, -1e-10]]).unwrap_err(),
+        area(1)
+    );
+    let mut nan = HINGE;
+    nan[3][0] = f64::NEG_INFINITY;
+    assert_eq!(
+        Hinge::new(nan).unwrap_err(),
+        KernelError::NonFiniteParameter { name: "pattern" }
+    );
+    // Below the length floor; and at it, so thin that 3/(A_a + A_b) overflows.
+    let tiny = HINGE.map(|p| p.map(|c| c * 1e-154));
+    assert_eq!(Hinge::new(tiny).unwrap_err(), area(0));
+    let (l, h) = (1e-150, 1.6e-158);
+    let thin = [[0.0, 0.0], [l, 0.0], [l / 2.0, h], [l / 2.0, -h]];
+    assert!(Membrane::new([thin[0], thin[1], thin[2]], 1.0, 0.3).is_ok());
+    assert_eq!(Hinge::new(thin).unwrap_err(), area(0));
+    // A symmetric diamond: K = (cot a1 + cot b1, cot a0 + cot b0, -cot a0 - cot a1, -cot b0 - cot b1).
+    let h = Hinge::new([[0.0, 0.0], [2.0, 0.0], [1.0, 1.0], [1.0, -1.0]]).unwrap();
+    assert_eq!(h.stencil, [2.0, 2.0, -2.0, -2.0]);
+    assert_eq!(h.scale, 1.5);
 }

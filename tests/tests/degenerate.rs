@@ -4,9 +4,11 @@
 //! non-finite value (documented in `folio-kernels`: NaN propagates, never a finite-looking
 //! result).
 
-use folio_kernels::Real;
+use folio_kernels::hinge::Hinge;
+use folio_kernels::membrane::Membrane;
 use folio_kernels::real::Vec3Ops;
 use folio_kernels::term::NodeVecs;
+use folio_kernels::{Potential, Real};
 use folio_tests::terms::{Terms, evaluate_all};
 
 const PARAMS: [f64; 12] = [1.0, 0.8, 1.2, 0.9, 1.1, 0.7, 1.3, 1.0, 0.6, 0.9, 1.0, 0.5];
@@ -105,4 +107,91 @@ fn non_finite_input_gives_non_finite_values() {
     non_finite_propagates::<f64>(f64::INFINITY);
     non_finite_propagates::<f32>(f32::NAN);
     non_finite_propagates::<f32>(f32::NEG_INFINITY);
+}
+
+/// Value, gradient and Hessian (and for the membrane the projected Hessian and the
+/// deformation gradient) of the sheet terms, flattened.
+fn sheet_outputs<T: Real>(x: &NodeVecs<T, 5>) -> Vec<(&'static str, Vec<f64>)> {
+    let p = |a: f64, b: f64| [T::from_f64(a), T::from_f64(b)];
+    let m = Membrane::new(
+        [p(0.0, 0.0), p(1.0, 0.1), p(0.3, 0.9)],
+        T::ONE,
+        T::from_f64(0.3),
+    )
+    .unwrap();
+    let h = Hinge::new([p(0.0, 0.0), p(1.0, 0.1), p(0.3, 0.9), p(0.6, -0.8)]).unwrap();
+    let x3: NodeVecs<T, 3> = core::array::from_fn(|k| x[k]);
+    let x4: NodeVecs<T, 4> = core::array::from_fn(|k| x[k]);
+    let (f0, f1) = m.deformation_gradient(&x3);
+    let membrane = [
+        vec![m.value(&x3).to_f64()],
+        folio_tests::flat_vecs::<T, 3>(&m.gradient(&x3)),
+        folio_tests::flat_blocks::<T, 3>(&m.hessian(&x3)),
+        folio_tests::flat_blocks::<T, 3>(&m.hessian_projected(&x3)),
+        folio_tests::flat_vecs::<T, 2>(&[f0, f1]),
+    ]
+    .concat();
+    let hinge = [
+        vec![h.value(&x4).to_f64()],
+        folio_tests::flat_vecs::<T, 4>(&h.gradient(&x4)),
+        folio_tests::flat_blocks::<T, 4>(&h.hessian(&x4)),
+    ]
+    .concat();
+    vec![("membrane", membrane), ("hinge", hinge)]
+}
+
+fn sheet_finite_everywhere<T: Real>() {
+    let mut cases = scenarios::<T>();
+    // An inverted (reflected) triangle and a crushed one.
+    let mut inverted = cases[0].1;
+    inverted[2] = v::<T>(0.3, -1.2, 0.1);
+    let mut crushed = cases[0].1;
+    crushed[1] = crushed[0] + v::<T>(1e-3, 0.0, 0.0);
+    cases.push(("inverted triangle", inverted));
+    cases.push(("crushed triangle", crushed));
+    for (case, x) in cases {
+        for (name, out) in sheet_outputs::<T>(&x) {
+            assert!(
+                out.iter().all(|e| e.is_finite()),
+                "{name} on '{case}' gave {out:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn membrane_and_hinge_give_finite_output_on_degenerate_input() {
+    sheet_finite_everywhere::<f64>();
+    sheet_finite_everywhere::<f32>();
+}
+
+fn sheet_non_finite_propagates<T: Real>(bad: T) {
+    for node in 0..4 {
+        for axis in 0..3 {
+            let mut x = scenarios::<T>()[0].1;
+            let mut c = [x[node].x(), x[node].y(), x[node].z()];
+            c[axis] = bad;
+            x[node] = T::Vec3::new(c[0], c[1], c[2]);
+            for (name, out) in sheet_outputs::<T>(&x) {
+                // Node 3 is not part of the membrane.
+                if name == "membrane" && node == 3 {
+                    assert!(out[0].is_finite(), "membrane read node 3");
+                } else {
+                    assert!(
+                        !out[0].is_finite(),
+                        "{name}: {bad} at node {node} axis {axis} gave value {}",
+                        out[0]
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn membrane_and_hinge_propagate_non_finite_input() {
+    sheet_non_finite_propagates::<f64>(f64::NAN);
+    sheet_non_finite_propagates::<f64>(f64::INFINITY);
+    sheet_non_finite_propagates::<f32>(f32::NAN);
+    sheet_non_finite_propagates::<f32>(f32::NEG_INFINITY);
 }

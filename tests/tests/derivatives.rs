@@ -9,8 +9,10 @@ use folio_kernels::dog::{DogBoundaryStar, DogInnerStar};
 use folio_kernels::fix::Fix;
 use folio_kernels::glue::Glue;
 use folio_kernels::gravity::Gravity;
+use folio_kernels::hinge::Hinge;
 use folio_kernels::iso2d::Iso2d;
 use folio_kernels::iso3d::Iso3d;
+use folio_kernels::membrane::Membrane;
 use folio_kernels::positional::Positional;
 use folio_kernels::spring::Spring;
 use folio_kernels::term::NodeVecs;
@@ -19,7 +21,7 @@ use folio_tests::{
     BOUNDARY_DIRS, FdErrors, INNER_DIRS, Rng, check_constraint, check_potential, jittered_star,
     rel_err,
 };
-use glam::DVec3;
+use glam::{DQuat, DVec3};
 
 const CONFIGS: usize = 200;
 /// Bound on the worst relative FD error of first and second derivatives.
@@ -286,4 +288,151 @@ fn cone_curl_jacobian() {
     }
     println!("{:<28} first {worst:9.2e}", "cone curl Jacobian");
     assert!(worst <= FD_TOL, "cone Jacobian error {worst:e}");
+}
+
+/// Twice the signed area and the longest squared edge of a pattern triangle.
+fn area2_and_longest(u: [[f64; 2]; 3]) -> (f64, f64) {
+    let d = |a: [f64; 2], b: [f64; 2]| [b[0] - a[0], b[1] - a[1]];
+    let (e1, e2, e3) = (d(u[0], u[1]), d(u[0], u[2]), d(u[1], u[2]));
+    let sq = |e: [f64; 2]| e[0] * e[0] + e[1] * e[1];
+    (
+        e1[0] * e2[1] - e1[1] * e2[0],
+        sq(e1).max(sq(e2)).max(sq(e3)),
+    )
+}
+
+/// A random counter-clockwise rest triangle of the pattern with $2A \ge 0.05\,\ell_{\max}^2$
+/// (angles down to about 3 degrees).
+fn pattern_triangle(r: &mut Rng) -> [[f64; 2]; 3] {
+    loop {
+        let u = [(); 3].map(|()| [r.uniform(-2.0, 2.0), r.uniform(-2.0, 2.0)]);
+        let (area2, longest) = area2_and_longest(u);
+        if area2.abs() >= 0.05 * longest && longest >= 0.04 {
+            return if area2 > 0.0 { u } else { [u[0], u[2], u[1]] };
+        }
+    }
+}
+
+/// A random hinge pattern `[u0, u1, u2, u3]`: edge `(u0, u1)`, `u2` left and `u3` right of it,
+/// both triangles passing the shape bound of [`pattern_triangle`].
+fn pattern_hinge(r: &mut Rng) -> [[f64; 2]; 4] {
+    loop {
+        let u0 = [r.uniform(-2.0, 2.0), r.uniform(-2.0, 2.0)];
+        let phi = r.uniform(-3.2, 3.2);
+        let len = r.uniform(0.3, 2.0);
+        let (t, n) = ([phi.cos(), phi.sin()], [-phi.sin(), phi.cos()]);
+        let u1 = [u0[0] + len * t[0], u0[1] + len * t[1]];
+        let side = |r: &mut Rng, sign: f64| {
+            let (a, h) = (r.uniform(-0.5, 1.5) * len, sign * r.uniform(0.1, 1.5) * len);
+            [u0[0] + a * t[0] + h * n[0], u0[1] + a * t[1] + h * n[1]]
+        };
+        let (u2, u3) = (side(r, 1.0), side(r, -1.0));
+        let (aa, la) = area2_and_longest([u0, u1, u2]);
+        let (ab, lb) = area2_and_longest([u1, u0, u3]);
+        if aa >= 0.05 * la && ab >= 0.05 * lb {
+            return [u0, u1, u2, u3];
+        }
+    }
+}
+
+/// Pattern points mapped by an in-plane stretch (principal stretches in `[lo, hi]`, below 1
+/// compresses), embedded in 3D, moved rigidly and jittered by up to `noise` per coordinate.
+fn deformed<const N: usize>(
+    r: &mut Rng,
+    u: &[[f64; 2]; N],
+    (lo, hi): (f64, f64),
+    noise: f64,
+) -> NodeVecs<f64, N> {
+    let (q, t): (DQuat, DVec3) = (r.rotation(), r.vec(2.0));
+    let (s1, s2, phi) = (r.uniform(lo, hi), r.uniform(lo, hi), r.uniform(-3.2, 3.2));
+    let (c, s) = (phi.cos(), phi.sin());
+    u.map(|p| {
+        let (a, b) = ((c * p[0] + s * p[1]) * s1, (-s * p[0] + c * p[1]) * s2);
+        q * DVec3::new(c * a - s * b, s * a + c * b, 0.0) + t + r.vec(noise)
+    })
+}
+
+#[test]
+fn membrane() {
+    potentials("membrane (StVK)", 16, |r| {
+        let u = pattern_triangle(r);
+        let m = Membrane::new(u, r.uniform(0.5, 3.0), r.uniform(0.0, 0.49)).unwrap();
+        // Mild (stretched or compressed) and wild (possibly inverted) configurations.
+        let noise = if r.uniform(0.0, 1.0) < 0.5 { 0.05 } else { 0.6 };
+        (m, deformed(r, &u, (0.6, 1.4), noise))
+    });
+}
+
+#[test]
+fn hinge() {
+    potentials("hinge (quadratic bending)", 17, |r| {
+        let u = pattern_hinge(r);
+        (Hinge::new(u).unwrap(), deformed(r, &u, (0.7, 1.3), 0.4))
+    });
+}
+
+/// Smallest and largest eigenvalue of a symmetric `9 x 9` Hessian.
+fn eigen_range(h: &folio_kernels::term::Blocks<f64, 3>) -> (f64, f64) {
+    let flat = folio_tests::flat_blocks::<f64, 3>(h);
+    let m = nalgebra::DMatrix::from_row_slice(9, 9, &flat);
+    let eig = nalgebra::SymmetricEigen::new(m).eigenvalues;
+    (eig.min(), eig.max())
+}
+
+#[test]
+fn membrane_projected_hessian_is_psd_and_exact_under_tension() {
+    let mut rng = Rng::new(18);
+    let (mut indefinite_exact, mut tension, mut compression) = (0, 0, 0);
+    for _ in 0..CONFIGS {
+        let u = pattern_triangle(&mut rng);
+        let m = Membrane::new(u, rng.uniform(0.5, 3.0), rng.uniform(0.0, 0.49)).unwrap();
+        let x = deformed(&mut rng, &u, (0.6, 1.4), 0.05);
+        let (f0, f1) = m.deformation_gradient(&x);
+        // Principal stresses of S = 2 mu E + lambda tr(E) I, computed here independently.
+        let e = [
+            (f0.dot(f0) - 1.0) / 2.0,
+            f0.dot(f1) / 2.0,
+            (f1.dot(f1) - 1.0) / 2.0,
+        ];
+        let tr = e[0] + e[2];
+        let s = [
+            2.0 * m.mu * e[0] + m.lambda * tr,
+            2.0 * m.mu * e[1],
+            2.0 * m.mu * e[2] + m.lambda * tr,
+        ];
+        let radius = (((s[0] - s[2]) / 2.0).powi(2) + s[1] * s[1]).sqrt();
+        let lowest = (s[0] + s[2]) / 2.0 - radius;
+        let (exact, projected) = (m.hessian(&x), m.hessian_projected(&x));
+        let (pmin, pmax) = eigen_range(&projected);
+        assert!(
+            pmin >= -1e-12 * pmax.max(1.0),
+            "projected Hessian has eigenvalue {pmin:e} (max {pmax:e})"
+        );
+        let gap = rel_err(
+            &folio_tests::flat_blocks::<f64, 3>(&exact),
+            &folio_tests::flat_blocks::<f64, 3>(&projected),
+        );
+        if lowest >= 0.0 {
+            tension += 1;
+            assert!(
+                gap <= 1e-14,
+                "under tension the projection changed H by {gap:e}"
+            );
+        } else {
+            compression += 1;
+            assert!(
+                gap > 0.0,
+                "under compression the projection changed nothing"
+            );
+            let (emin, emax) = eigen_range(&exact);
+            if emin < -1e-9 * emax {
+                indefinite_exact += 1;
+            }
+        }
+    }
+    println!(
+        "membrane projection: {tension} under tension, {compression} compressed, \
+         {indefinite_exact} with an indefinite exact Hessian"
+    );
+    assert!(tension > 10 && compression > 10 && indefinite_exact > 10);
 }

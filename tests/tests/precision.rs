@@ -2,8 +2,12 @@
 //! tolerance: the max-norm gap relative to the f64 output's scale (floored at 1) is at most
 //! `F32_TOL`.
 
+use folio_kernels::hinge::Hinge;
+use folio_kernels::membrane::Membrane;
+use folio_kernels::term::NodeVecs;
+use folio_kernels::{Potential, Real};
 use folio_tests::terms::{Terms, evaluate_all};
-use folio_tests::{INNER_DIRS, Rng, jittered_star, to_f32};
+use folio_tests::{INNER_DIRS, Rng, flat_blocks, flat_vecs, jittered_star, precision_gap, to_f32};
 
 /// Stated f32-vs-f64 tolerance (relative to output scale).
 const F32_TOL: f64 = 1e-4;
@@ -39,5 +43,58 @@ fn f32_agrees_with_f64_for_every_term() {
     }
     for (name, gap) in &worst {
         assert!(*gap <= F32_TOL, "{name}: f32 gap {gap:e} > {F32_TOL:e}");
+    }
+}
+
+/// Value, gradient and Hessian of a potential, flattened into `f64`s.
+fn outputs<T: Real, P: Potential<T, N>, const N: usize>(p: &P, x: &NodeVecs<T, N>) -> Vec<f64> {
+    [
+        vec![p.value(x).to_f64()],
+        flat_vecs::<T, N>(&p.gradient(x)),
+        flat_blocks::<T, N>(&p.hessian(x)),
+    ]
+    .concat()
+}
+
+fn gap(o32: &[f64], o64: &[f64]) -> f64 {
+    let o32: Vec<f32> = o32.iter().map(|&v| v as f32).collect();
+    precision_gap(&o32, o64)
+}
+
+#[test]
+fn membrane_and_hinge_f32_agree_with_f64() {
+    let mut rng = Rng::new(42);
+    let (mut membrane, mut projected, mut hinge) = (0.0_f64, 0.0_f64, 0.0_f64);
+    for _ in 0..200 {
+        // A well-shaped pattern quad: edge (u0, u1) along X, u2 above, u3 below, jittered.
+        let mut j = || rng.uniform(-0.15, 0.15);
+        let u = [
+            [j(), j()],
+            [1.0 + j(), j()],
+            [0.4 + j(), 0.9 + j()],
+            [0.6 + j(), -0.8 + j()],
+        ];
+        let u32 = u.map(|p| p.map(|c| c as f32));
+        let (y, nu) = (rng.uniform(0.5, 2.0), rng.uniform(0.0, 0.45));
+        let q = rng.rotation();
+        let x: NodeVecs<f64, 4> = u.map(|p| q * glam::DVec3::new(p[0], p[1], 0.0) + rng.vec(0.3));
+        let x3: NodeVecs<f64, 3> = [x[0], x[1], x[2]];
+        let m64 = Membrane::new([u[0], u[1], u[2]], y, nu).unwrap();
+        let m32 = Membrane::new([u32[0], u32[1], u32[2]], y as f32, nu as f32).unwrap();
+        membrane = membrane.max(gap(&outputs(&m32, &to_f32(&x3)), &outputs(&m64, &x3)));
+        projected = projected.max(gap(
+            &flat_blocks::<f32, 3>(&m32.hessian_projected(&to_f32(&x3))),
+            &flat_blocks::<f64, 3>(&m64.hessian_projected(&x3)),
+        ));
+        let (h64, h32) = (Hinge::new(u).unwrap(), Hinge::new(u32).unwrap());
+        hinge = hinge.max(gap(&outputs(&h32, &to_f32(&x)), &outputs(&h64, &x)));
+    }
+    for (name, g) in [
+        ("membrane", membrane),
+        ("membrane projected", projected),
+        ("hinge", hinge),
+    ] {
+        println!("{name:<24} f32 vs f64 gap {g:9.2e}");
+        assert!(g <= F32_TOL, "{name}: f32 gap {g:e} > {F32_TOL:e}");
     }
 }

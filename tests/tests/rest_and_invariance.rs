@@ -1,11 +1,15 @@
-//! Zero at rest and invariance under rigid motion, for every term where it holds.
+//! Zero at rest and invariance under rigid motion, for every term where it holds, and the
+//! closed-form energies of the sheet terms (membrane under plane-stress uniaxial tension,
+//! hinge under an isometric fold).
 
 use folio_kernels::binding::Binding;
 use folio_kernels::dog::{DogBoundaryStar, DogInnerStar};
 use folio_kernels::fix::Fix;
 use folio_kernels::glue::Glue;
+use folio_kernels::hinge::Hinge;
 use folio_kernels::iso2d::Iso2d;
 use folio_kernels::iso3d::Iso3d;
+use folio_kernels::membrane::Membrane;
 use folio_kernels::positional::Positional;
 use folio_kernels::spring::{Spring, SpringKind};
 use folio_kernels::term::{Blocks, NodeVecs};
@@ -225,4 +229,184 @@ fn invariant_terms_are_invariant_under_rigid_motion() {
     }
     println!("worst rigid-motion discrepancy {worst:.2e}");
     assert!(worst <= 1e-10, "rigid motion changed a term by {worst:e}");
+}
+
+/// Twice the signed area and the longest squared edge of a pattern triangle.
+fn area2_and_longest(u: [[f64; 2]; 3]) -> (f64, f64) {
+    let d = |a: [f64; 2], b: [f64; 2]| [b[0] - a[0], b[1] - a[1]];
+    let (e1, e2, e3) = (d(u[0], u[1]), d(u[0], u[2]), d(u[1], u[2]));
+    let sq = |e: [f64; 2]| e[0] * e[0] + e[1] * e[1];
+    (
+        e1[0] * e2[1] - e1[1] * e2[0],
+        sq(e1).max(sq(e2)).max(sq(e3)),
+    )
+}
+
+/// A random counter-clockwise pattern triangle with $2A \ge 0.2\,\ell_{\max}^2$.
+fn pattern_triangle(r: &mut Rng) -> [[f64; 2]; 3] {
+    loop {
+        let u = [(); 3].map(|()| [r.uniform(-2.0, 2.0), r.uniform(-2.0, 2.0)]);
+        let (area2, longest) = area2_and_longest(u);
+        if area2.abs() >= 0.2 * longest && longest >= 0.1 {
+            return if area2 > 0.0 { u } else { [u[0], u[2], u[1]] };
+        }
+    }
+}
+
+/// A random hinge pattern: the triangle `[u0, u1, u2]` and `u3` on the other side of the
+/// edge `(u0, u1)`, both triangles with $2A \ge 0.2\,\ell_{\max}^2$.
+fn pattern_hinge(r: &mut Rng) -> [[f64; 2]; 4] {
+    loop {
+        let [u0, u1, u2] = pattern_triangle(r);
+        let u3 = [r.uniform(-3.0, 3.0), r.uniform(-3.0, 3.0)];
+        let (area2, longest) = area2_and_longest([u1, u0, u3]);
+        if area2 >= 0.2 * longest {
+            return [u0, u1, u2, u3];
+        }
+    }
+}
+
+/// The pattern embedded in the plane Z = 0.
+fn embed<const N: usize>(u: &[[f64; 2]; N]) -> NodeVecs<f64, N> {
+    u.map(|p| DVec3::new(p[0], p[1], 0.0))
+}
+
+#[test]
+fn membrane_and_hinge_vanish_at_rest() {
+    let mut rng = Rng::new(54);
+    for _ in 0..200 {
+        let (q, t) = (rng.rotation(), rng.vec(3.0));
+        let u = pattern_triangle(&mut rng);
+        let m = Membrane::new(u, rng.uniform(0.5, 3.0), rng.uniform(0.0, 0.49)).unwrap();
+        assert_potential_at_rest("membrane", &m, &rigid(&embed(&u), q, t));
+        let h = pattern_hinge(&mut rng);
+        assert_potential_at_rest("hinge", &Hinge::new(h).unwrap(), &rigid(&embed(&h), q, t));
+    }
+}
+
+#[test]
+fn hinge_vanishes_on_affine_images_of_the_pattern() {
+    // sum K_i = 0 and sum K_i u_i = 0: any x_i = M u_i + t (M 3x2) has zero bending, including
+    // in-plane stretches and shears, which bend nothing.
+    let mut rng = Rng::new(55);
+    for _ in 0..200 {
+        let u = pattern_hinge(&mut rng);
+        let hinge = Hinge::new(u).unwrap();
+        let (c0, c1, t) = (rng.vec(2.0), rng.vec(2.0), rng.vec(3.0));
+        let x = u.map(|p| c0 * p[0] + c1 * p[1] + t);
+        let s = hinge.apply(&x).length();
+        let scale: f64 = hinge
+            .stencil
+            .iter()
+            .zip(&x)
+            .map(|(k, p)| k.abs() * p.length())
+            .sum();
+        assert!(s <= 1e-14 * scale, "hinge stencil {s:e} on an affine image");
+    }
+}
+
+#[test]
+fn hinge_fold_energy_matches_the_dihedral_angle() {
+    let mut rng = Rng::new(56);
+    for _ in 0..200 {
+        let u = pattern_hinge(&mut rng);
+        let hinge = Hinge::new(u).unwrap();
+        let (area_a, _) = area2_and_longest([u[0], u[1], u[2]]);
+        let (area_b, _) = area2_and_longest([u[1], u[0], u[3]]);
+        let (area_a, area_b) = (area_a / 2.0, area_b / 2.0);
+        let flat = embed(&u);
+        let edge = flat[1] - flat[0];
+        let fold = |theta: f64| {
+            // Turn triangle b about the edge: an isometry of the sheet.
+            let turn = DQuat::from_axis_angle(edge.normalize(), theta);
+            let mut x = flat;
+            x[3] = flat[0] + turn * (flat[3] - flat[0]);
+            x
+        };
+        let (q, t) = (rng.rotation(), rng.vec(3.0));
+        let theta = rng.uniform(-3.1, 3.1);
+        let v = hinge.value(&rigid(&fold(theta), q, t));
+        let expected =
+            12.0 * edge.length_squared() * (theta / 2.0).sin().powi(2) / (area_a + area_b);
+        assert!(
+            (v - expected).abs() <= 1e-12 * expected.max(1e-3),
+            "fold by {theta}: energy {v} vs {expected}"
+        );
+        assert!(v > 0.0, "a fold by {theta} must cost energy");
+        // Small angles: quadratic in theta, V / theta^2 -> 3 |e|^2 / (A_a + A_b).
+        let small = 1e-4;
+        let ratio = hinge.value(&fold(small)) / small.powi(2);
+        let limit = 3.0 * edge.length_squared() / (area_a + area_b);
+        assert!(
+            (ratio / limit - 1.0).abs() <= 1e-6,
+            "V/theta^2 = {ratio} vs {limit}"
+        );
+        let quarter = hinge.value(&fold(small / 2.0)) / hinge.value(&fold(small));
+        assert!(
+            (quarter - 0.25).abs() <= 1e-6,
+            "halving theta scaled V by {quarter}"
+        );
+    }
+}
+
+#[test]
+fn membrane_uniaxial_plane_stress() {
+    // E = diag(eps, -nu eps) in the pattern frame has plane stress S = diag(Y eps, 0): energy
+    // A0 Y eps^2 / 2 and no force across the stretch (this fixes the plane-stress Lame pair).
+    let mut rng = Rng::new(57);
+    for _ in 0..200 {
+        let u = pattern_triangle(&mut rng);
+        let (y, nu, eps) = (
+            rng.uniform(0.5, 3.0),
+            rng.uniform(0.0, 0.49),
+            rng.uniform(-0.2, 0.3),
+        );
+        let m = Membrane::new(u, y, nu).unwrap();
+        let (sx, sy) = ((1.0 + 2.0 * eps).sqrt(), (1.0 - 2.0 * nu * eps).sqrt());
+        let (q, t) = (rng.rotation(), rng.vec(3.0));
+        let x = rigid(&u.map(|p| DVec3::new(sx * p[0], sy * p[1], 0.0)), q, t);
+        let area = area2_and_longest(u).0 / 2.0;
+        let expected = area * y * eps * eps / 2.0;
+        let v = m.value(&x);
+        assert!(
+            (v - expected).abs() <= 1e-12 * expected.max(1e-6),
+            "uniaxial energy {v} vs {expected}"
+        );
+        // Forces at unit strain are of order Y A0 |D_m^-1|.
+        let unit_force = y
+            * area
+            * m.dm_inv
+                .iter()
+                .flatten()
+                .fold(0.0_f64, |a, b| a.max(b.abs()));
+        let lateral = q * DVec3::Y;
+        for g in m.gradient(&x) {
+            let across = g.dot(lateral);
+            assert!(
+                across.abs() <= 1e-13 * unit_force,
+                "lateral force {across:e} (force {g:?}, scale {unit_force:e})"
+            );
+        }
+    }
+}
+
+#[test]
+fn membrane_and_hinge_are_invariant_under_rigid_motion() {
+    let mut rng = Rng::new(58);
+    let mut worst: f64 = 0.0;
+    for _ in 0..200 {
+        let (q, t) = (rng.rotation(), rng.vec(10.0));
+        let u = pattern_triangle(&mut rng);
+        let m = Membrane::new(u, rng.uniform(0.5, 3.0), rng.uniform(0.0, 0.49)).unwrap();
+        let x = rigid(&embed(&u), rng.rotation(), rng.vec(2.0)).map(|p| p * 1.1 + rng.vec(0.3));
+        worst = worst.max(potential_invariance(&m, &x, q, t));
+        let h = pattern_hinge(&mut rng);
+        let x4 = rigid(&embed(&h), rng.rotation(), rng.vec(2.0)).map(|p| p + rng.vec(0.5));
+        worst = worst.max(potential_invariance(&Hinge::new(h).unwrap(), &x4, q, t));
+    }
+    println!("worst rigid-motion discrepancy (sheet terms) {worst:.2e}");
+    assert!(
+        worst <= 1e-10,
+        "rigid motion changed a sheet term by {worst:e}"
+    );
 }

@@ -61,6 +61,25 @@ fn page(model: &mut dyn PageModel<f32>) {
     }
 }
 
+#[cfg(feature = "tearing")]
+fn tearing() {
+    use folio_solvers::sheet::{SheetSettings, TearingSheet};
+    let Ok(mut sheet) = TearingSheet::<f32>::new(black_box(SheetSettings::default())) else {
+        return;
+    };
+    let (Ok(a), Ok(b)) = (
+        sheet.grab(black_box([3.0, 0.0])),
+        sheet.grab(black_box([7.5, 0.0])),
+    ) else {
+        return;
+    };
+    for k in 0..black_box(8) {
+        let _ = sheet.move_finger(a, finger(k));
+        let _ = sheet.move_finger(b, -finger(k));
+        let _ = black_box(sheet.step());
+    }
+}
+
 /// Entry point the linker keeps; everything reachable from it is what the features cost.
 #[unsafe(no_mangle)]
 pub extern "C" fn _start() -> ! {
@@ -70,6 +89,8 @@ pub extern "C" fn _start() -> ! {
     if let Ok(mut cone) = folio_solvers::page::cone::ConePage::<f32>::new(Default::default()) {
         page(&mut cone);
     }
+    #[cfg(feature = "tearing")]
+    tearing();
     #[cfg(feature = "mass-spring")]
     if let Ok(mut spring) = folio_solvers::page::spring::SpringPage::<f32>::new(Default::default())
     {

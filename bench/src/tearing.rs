@@ -1,0 +1,188 @@
+//! The tearing sheet's scenario for benches and reports (seed `002_…` Fig. 2 and 15, as in
+//! `tests/tests/tearing.rs`): the default 12 x 9 sheet of 8 x 6 quads (96 triangles) with a
+//! slit cut from $(6, 0)$ to $(6, 1.5)$, two fingers grabbed at $(3, 0)$ and $(7.5, 0)$ and
+//! moved apart at 0.3 units/s along $\mp X$, one [`TearingSheet::step`] per frame at 60 fps.
+//!
+//! Besides the whole frame, the parts of a frame can be replayed on copies of a sheet:
+//! [`TearInputs`] (the tearing step, [`Tears::step`]) and [`ConeInputs`] (the cone layer's
+//! update and remesh), each built from the sheet's public state the way
+//! `folio_solvers::sheet::TearingSheet::step` builds it.
+
+use folio_geometry::SheetMesh;
+use folio_geometry::sheet::{ConeLayer, ConeSettings};
+use folio_kernels::{Potential, Real};
+use folio_solvers::sheet::{FrameReport, SheetEffects, SheetModel, SheetSettings, TearingSheet};
+use folio_tearing::{TearStep, Tears};
+
+/// The 3D vector type of `f64`.
+pub type V3 = <f64 as Real>::Vec3;
+
+/// Frames per second of the scenario.
+pub const FPS: f64 = 60.0;
+
+/// Finger speed (sheet units per second) along $\mp X$.
+pub const SPEED: f64 = 0.3;
+
+/// The asymmetric grabs: the left finger three units from the notch, the right one 1.5.
+pub const ASYMMETRIC: [[f64; 2]; 2] = [[3.0, 0.0], [7.5, 0.0]];
+
+/// The scenario: the sheet, its fingers' start points and velocities, the frame count.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// The sheet.
+    pub sheet: TearingSheet<f64>,
+    /// Finger index, start point and velocity of each pull.
+    pub pulls: Vec<(usize, V3, V3)>,
+    /// Frames played.
+    pub frames: usize,
+}
+
+impl Scene {
+    /// The notched default sheet with `effects`, grabbed at `grabs` (the first pulled
+    /// toward −X, the second toward +X).
+    ///
+    /// # Panics
+    /// On a sheet or grab the fixed scenario never produces (a bench harness).
+    #[must_use]
+    pub fn notched(effects: SheetEffects, grabs: [[f64; 2]; 2]) -> Self {
+        let settings = SheetSettings {
+            effects,
+            ..SheetSettings::default()
+        };
+        let columns = settings.nx as u32 + 1;
+        let vertex = |i: u32, j: u32| i + columns * j;
+        let mut mesh =
+            SheetMesh::rectangle(settings.width, settings.height, settings.nx, settings.ny)
+                .expect("mesh");
+        mesh.cut_edge(vertex(4, 0), vertex(4, 1)).expect("slit");
+        let mut sheet = TearingSheet::with_mesh(mesh, settings).expect("sheet");
+        let mut pulls = Vec::new();
+        for (at, sign) in grabs.into_iter().zip([-1.0, 1.0]) {
+            let finger = sheet.grab(at).expect("grab");
+            let start = sheet.fingers()[finger].target;
+            pulls.push((finger, start, V3::new(sign * SPEED, 0.0, 0.0)));
+        }
+        Self {
+            sheet,
+            pulls,
+            frames: 0,
+        }
+    }
+
+    /// Moves the fingers to where they are at the next frame (untimed by callers).
+    ///
+    /// # Panics
+    /// Never for the scenario's finite targets.
+    pub fn move_fingers(&mut self) {
+        let t = (self.frames + 1) as f64 / FPS;
+        for &(finger, start, velocity) in &self.pulls {
+            self.sheet
+                .move_finger(finger, start + velocity * t)
+                .expect("move");
+        }
+    }
+
+    /// One frame: the fingers moved, then [`TearingSheet::step`].
+    pub fn frame(&mut self) -> FrameReport<f64> {
+        self.move_fingers();
+        self.frames += 1;
+        self.sheet.step()
+    }
+
+    /// The length of the first tear's path in the pattern (0 without a tear).
+    #[must_use]
+    pub fn tear_length(&self) -> f64 {
+        self.sheet.tears().tears().first().map_or(0.0, |t| {
+            t.path
+                .windows(2)
+                .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+                .sum()
+        })
+    }
+}
+
+/// The in-plane stretching gradient of every triangle at its corners (what the sheet hands
+/// the tearing step), into `out`.
+pub fn membrane_gradients(out: &mut Vec<[V3; 3]>, mesh: &SheetMesh<f64>, model: &SheetModel<f64>) {
+    let x = mesh.positions();
+    out.clear();
+    for term in model.membranes().terms() {
+        let local = term.nodes.map(|i| x[i as usize]);
+        out.push(term.kernel.gradient(&local));
+    }
+}
+
+/// Copies of everything one tearing step of a sheet reads and writes.
+#[derive(Clone, Debug)]
+pub struct TearInputs {
+    /// The mesh (edited by a propagation).
+    pub mesh: SheetMesh<f64>,
+    /// The tears (their buffers, paths and alpha textures).
+    pub tears: Tears<f64>,
+    /// The membranes' gradients at the mesh's positions.
+    pub gradients: Vec<[V3; 3]>,
+    /// The held vertices.
+    pub fingers: Vec<u32>,
+    /// The cone layer's junction points (none when cones are off).
+    pub junctions: Vec<u32>,
+}
+
+impl TearInputs {
+    /// The inputs of the next tearing step of `sheet`, copied.
+    #[must_use]
+    pub fn of(sheet: &TearingSheet<f64>) -> Self {
+        let mut gradients = Vec::new();
+        membrane_gradients(&mut gradients, sheet.mesh(), sheet.model());
+        let junctions = if sheet.settings().effects.cones {
+            sheet.layer().junctions.clone()
+        } else {
+            Vec::new()
+        };
+        Self {
+            mesh: sheet.mesh().clone(),
+            tears: sheet.tears().clone(),
+            gradients,
+            fingers: sheet.fingers().iter().map(|f| f.vertex).collect(),
+            junctions,
+        }
+    }
+
+    /// [`Tears::step`] on the copies.
+    pub fn step(&mut self) -> TearStep<f64> {
+        self.tears.step(
+            &mut self.mesh,
+            &self.gradients,
+            &self.fingers,
+            &self.junctions,
+        )
+    }
+}
+
+/// Copies of everything the cone layer's update and remesh of a sheet read and write.
+#[derive(Clone, Debug)]
+pub struct ConeInputs {
+    /// The mesh (edited by the remesh's flips).
+    pub mesh: SheetMesh<f64>,
+    /// The layer.
+    pub layer: ConeLayer<f64>,
+    /// The thresholds.
+    pub settings: ConeSettings<f64>,
+}
+
+impl ConeInputs {
+    /// The inputs of `sheet`'s next cone update, copied.
+    #[must_use]
+    pub fn of(sheet: &TearingSheet<f64>) -> Self {
+        Self {
+            mesh: sheet.mesh().clone(),
+            layer: sheet.layer().clone(),
+            settings: sheet.settings().cones,
+        }
+    }
+
+    /// [`ConeLayer::update`] then [`ConeLayer::remesh`] on the copies; the flips made.
+    pub fn run(&mut self) -> usize {
+        self.layer.update(&self.mesh, &self.settings);
+        self.layer.remesh(&mut self.mesh, &self.settings)
+    }
+}

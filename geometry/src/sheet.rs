@@ -1,0 +1,23 @@
+//! The tearing sheet (seed `002_…` Sec. 3, 5.3, App. A): a coarse triangle mesh that carries
+//! both the flat 2D pattern of the paper and its 3D deformed shape, with the edits a tear
+//! makes and the generalized-cone layer that guides the mesh.
+//!
+//! - [`SheetMesh`]: vertices with pattern coordinates $(u, v)$, 3D positions and velocities;
+//!   triangles counter-clockwise in the pattern; adjacency, fans and boundary loops.
+//! - [`edit`]: insert a vertex in a triangle or on an edge, cut an edge (splitting its
+//!   boundary end points into two tear lips), move a tear tip (removing it from the
+//!   boundary, seed Fig. 8), flip an edge.
+//! - [`cones`]: flat and curved (generalized-cone) regions from the discrete curvature,
+//!   ruling directions, junction points, and the remesh toward the rulings.
+//!
+//! Units: pattern and positions in sheet units, velocities in sheet units per second.
+
+pub mod cones;
+pub mod edit;
+mod error;
+mod mesh;
+
+pub use cones::{ConeLayer, ConeSettings, Region};
+pub use edit::Cut;
+pub use error::SheetError;
+pub use mesh::{FanIter, NONE, SheetMesh};

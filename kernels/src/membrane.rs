@@ -1,0 +1,238 @@
+//! In-plane stretching of one triangle of a tearing sheet: the Saint Venant–Kirchhoff
+//! membrane energy behind the stretching forces of the FEM layer (seed `002_…` Sec. 5.1,
+//! "the in-plane stretching forces … related to the deformation of the triangles").
+//!
+//! Nodes `[x0, x1, x2]` (3D positions) with rest coordinates `[u0, u1, u2]` in the flat 2D
+//! pattern, counter-clockwise. With $B = D_m^{-1}$:
+//! $$D_m = [u_1 - u_0,\ u_2 - u_0] \in \mathbb{R}^{2\times 2},\qquad
+//!   F = [x_1 - x_0,\ x_2 - x_0]\, D_m^{-1} = [f_0\ f_1] \in \mathbb{R}^{3\times 2},$$
+//! $$E = \tfrac12\left(F^T F - I\right),\qquad
+//!   V = A_0\left(\mu \lVert E\rVert_F^2 + \tfrac{\lambda}{2}(\operatorname{tr} E)^2\right),$$
+//! $A_0 = \tfrac12 \det D_m$ the rest area, and the plane-stress Lamé parameters of the 2D
+//! Young's modulus $Y$ (force per length: Young's modulus times thickness) and Poisson's
+//! ratio $\nu$: $\mu = Y / (2(1+\nu))$, $\lambda = Y\nu / (1-\nu^2)$. (Then a uniaxial
+//! strain $E = \operatorname{diag}(\epsilon, -\nu\epsilon)$ has stress
+//! $S = \operatorname{diag}(Y\epsilon, 0)$.)
+//!
+//! Derivatives. The columns of $F$ are linear in the nodes, $f_j = \sum_i w_{ij} x_i$ with
+//! $w_{0j} = -(B_{0j} + B_{1j})$, $w_{1j} = B_{0j}$, $w_{2j} = B_{1j}$. With the second
+//! Piola–Kirchhoff stress $S = 2\mu E + \lambda \operatorname{tr}(E)\, I$ ($2\times 2$) and
+//! $P = F S = [p_0\ p_1]$:
+//! $$\nabla_{x_i} V = A_0 \sum_j w_{ij}\, p_j,\qquad
+//!   \nabla^2_{x_a x_b} V = A_0 \sum_{j,k} w_{aj} w_{bk}\, C_{jk},$$
+//! $$C_{jk} = \frac{\partial p_j}{\partial f_k}
+//!   = S_{jk} I_3 + \mu\, f_k f_j^T + \lambda\, f_j f_k^T +
+//!   \mu\, \delta_{jk}\left(f_0 f_0^T + f_1 f_1^T\right).$$
+//! The part without $S_{jk} I_3$ (material stiffness) is positive semi-definite: its quadratic
+//! form in a variation $\delta F$ is $2\mu\lVert \delta E\rVert_F^2 + \lambda (\operatorname{tr}
+//! \delta E)^2$ with $\delta E = \operatorname{sym}(F^T \delta F)$. The geometric stiffness
+//! $S \otimes I_3$ is indefinite when a principal stress is negative (compression);
+//! [`Membrane::hessian_projected`] replaces $S$ there by its positive part
+//! $S^+ = \sum_k \max(\sigma_k, 0)\, v_k v_k^T$ and so is positive semi-definite, and equal to
+//! the exact Hessian whenever $S \succeq 0$.
+//!
+//! Units: pattern coordinates and positions in page units, $Y$ in force per length,
+//! $V$ in force·length, gradients in force, Hessians in force per length.
+//!
+//! Degenerate input: the constructor refuses degenerate, clockwise and sliver rest triangles
+//! ([`KernelError::NonPositiveRestArea`]), so evaluation never divides. Value, gradient and
+//! Hessian are polynomials (degree 4, 3, 2) in the positions: any finite configuration,
+//! including coincident or collinear nodes and inverted triangles, gives finite output unless
+//! the polynomial itself overflows (the guard bounds $\lVert D_m^{-1}\rVert_F <
+//! \sqrt{2}/(\sqrt{\varepsilon}\,\ell_{\max})$; for page-unit triangles and coordinates up to
+//! [`Real::COORD_MAX`] nothing overflows). An inverted triangle is not detected: the Green
+//! strain does not see orientation, so a reflected triangle has the energy of its mirror image.
+//! NaN input propagates to NaN output.
+
+use crate::error::{KernelError, finite, rest_triangle_area2};
+use crate::math;
+use crate::real::{Mat3Ops, Real, Vec3Ops};
+use crate::term::{Blocks, NodeVecs, Potential, zero_blocks};
+
+/// Saint Venant–Kirchhoff stretching energy of one sheet triangle (module docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Membrane<T> {
+    /// $B = D_m^{-1}$, row-major (`dm_inv[row][col]`), per page unit.
+    pub dm_inv: [[T; 2]; 2],
+    /// $A_0$, the rest area in the pattern, page units².
+    pub rest_area: T,
+    /// $\mu = Y/(2(1+\nu))$, force per length.
+    pub mu: T,
+    /// $\lambda = Y\nu/(1-\nu^2)$, force per length.
+    pub lambda: T,
+}
+
+/// A symmetric $2\times 2$ matrix `[m00, m01, m11]`.
+type Sym2<T> = [T; 3];
+
+/// The positive part $S^+$ of a symmetric $2\times 2$ matrix (negative eigenvalues set to
+/// zero). With eigenvalues $\sigma_1 > 0 > \sigma_2$: $S^+ = \sigma_1 (S - \sigma_2 I) /
+/// (\sigma_1 - \sigma_2)$, no eigenvectors needed and no division by zero. NaN stays NaN.
+#[inline]
+#[must_use]
+fn positive_part<T: Real>(s: Sym2<T>) -> Sym2<T> {
+    let mean = (s[0] + s[2]) * T::HALF;
+    let half_diff = (s[0] - s[2]) * T::HALF;
+    let radius = math::sqrt(half_diff * half_diff + s[1] * s[1]);
+    let (hi, lo) = (mean + radius, mean - radius);
+    if lo >= T::ZERO {
+        s
+    } else if hi <= T::ZERO {
+        [T::ZERO; 3]
+    } else {
+        let c = hi / (hi - lo);
+        [(s[0] - lo) * c, s[1] * c, (s[2] - lo) * c]
+    }
+}
+
+impl<T: Real> Membrane<T> {
+    /// From the rest triangle `[u0, u1, u2]` in the 2D pattern (page units,
+    /// counter-clockwise), the 2D Young's modulus `stretch_modulus` $Y > 0$ (force per
+    /// length) and Poisson's ratio `poisson` $\nu \in [0, 1/2)$.
+    ///
+    /// The rest triangle must satisfy $2A_0 > \sqrt{\varepsilon}\,\ell_{\max}^2$ ($\ell_{\max}$
+    /// its longest edge, $\varepsilon$ the precision's machine epsilon) and
+    /// $\ell_{\max} \ge$ [`Real::LENGTH_FLOOR`].
+    ///
+    /// # Errors
+    /// [`KernelError::NonFiniteParameter`] (`"pattern"`, `"stretch_modulus"`, `"poisson"`),
+    /// [`KernelError::NonPositiveRestArea`] with `index` 0 for a degenerate, clockwise or
+    /// sliver rest triangle, [`KernelError::OutOfRange`] for $Y \le 0$ or $\nu$ outside
+    /// $[0, 1/2)$.
+    pub fn new(pattern: [[T; 2]; 3], stretch_modulus: T, poisson: T) -> Result<Self, KernelError> {
+        for p in pattern {
+            for c in p {
+                finite(c, "pattern")?;
+            }
+        }
+        let y = finite(stretch_modulus, "stretch_modulus")?;
+        let nu = finite(poisson, "poisson")?;
+        if y <= T::ZERO {
+            return Err(KernelError::OutOfRange {
+                name: "stretch_modulus",
+            });
+        }
+        if nu < T::ZERO || nu >= T::HALF {
+            return Err(KernelError::OutOfRange { name: "poisson" });
+        }
+        let area2 = rest_triangle_area2(pattern, 0)?;
+        let [u0, u1, u2] = pattern;
+        let (e1, e2) = (
+            [u1[0] - u0[0], u1[1] - u0[1]],
+            [u2[0] - u0[0], u2[1] - u0[1]],
+        );
+        let inv = T::ONE / area2;
+        let dm_inv = [[e2[1] * inv, -e2[0] * inv], [-e1[1] * inv, e1[0] * inv]];
+        if !dm_inv.iter().flatten().all(|v| v.is_finite()) {
+            return Err(KernelError::NonPositiveRestArea { index: 0 });
+        }
+        Ok(Self {
+            dm_inv,
+            rest_area: area2 * T::HALF,
+            mu: y / (T::TWO * (T::ONE + nu)),
+            lambda: y * nu / ((T::ONE - nu) * (T::ONE + nu)),
+        })
+    }
+
+    /// The two columns $(f_0, f_1)$ of the deformation gradient
+    /// $F = [x_1 - x_0,\ x_2 - x_0]\,D_m^{-1}$ ($3\times 2$, dimensionless): the images of the
+    /// pattern's unit X and Y directions. $F^T$ maps a 3D force into the pattern.
+    #[inline]
+    #[must_use]
+    pub fn deformation_gradient(&self, x: &NodeVecs<T, 3>) -> (T::Vec3, T::Vec3) {
+        let (a, b) = (x[1] - x[0], x[2] - x[0]);
+        let m = &self.dm_inv;
+        (a * m[0][0] + b * m[1][0], a * m[0][1] + b * m[1][1])
+    }
+
+    /// $w_{ij} = \partial f_j / \partial x_i$ (module docs).
+    #[inline]
+    fn node_weights(&self) -> [[T; 2]; 3] {
+        let m = &self.dm_inv;
+        [[-(m[0][0] + m[1][0]), -(m[0][1] + m[1][1])], m[0], m[1]]
+    }
+
+    /// Green strain $E$ and second Piola–Kirchhoff stress $S$ of the columns `f`.
+    #[inline]
+    fn strain_stress(&self, f: (T::Vec3, T::Vec3)) -> (Sym2<T>, Sym2<T>) {
+        let e = [
+            (f.0.dot(f.0) - T::ONE) * T::HALF,
+            f.0.dot(f.1) * T::HALF,
+            (f.1.dot(f.1) - T::ONE) * T::HALF,
+        ];
+        let lt = self.lambda * (e[0] + e[2]);
+        let two_mu = T::TWO * self.mu;
+        (e, [two_mu * e[0] + lt, two_mu * e[1], two_mu * e[2] + lt])
+    }
+
+    /// The Hessian with the geometric stiffness built from the stress `s` (exact: $S$;
+    /// projected: $S^+$).
+    fn hessian_with(&self, f: (T::Vec3, T::Vec3), s: Sym2<T>) -> Blocks<T, 3> {
+        let (f0, f1) = f;
+        let id = T::Mat3::IDENTITY;
+        let (mu, lambda) = (self.mu, self.lambda);
+        let f00 = T::Mat3::outer(f0, f0);
+        let f11 = T::Mat3::outer(f1, f1);
+        let ff = (f00 + f11) * mu;
+        let c00 = id * s[0] + f00 * (mu + lambda) + ff;
+        let c11 = id * s[2] + f11 * (mu + lambda) + ff;
+        let c01 = id * s[1] + T::Mat3::outer(f1, f0) * mu + T::Mat3::outer(f0, f1) * lambda;
+        let c10 = c01.transposed();
+        let w = self.node_weights();
+        let a0 = self.rest_area;
+        let mut h = zero_blocks::<T, 3>();
+        for a in 0..3 {
+            for b in a..3 {
+                let (wa, wb) = (w[a], w[b]);
+                let block = (c00 * (wa[0] * wb[0])
+                    + c01 * (wa[0] * wb[1])
+                    + c10 * (wa[1] * wb[0])
+                    + c11 * (wa[1] * wb[1]))
+                    * a0;
+                h[a][b] = block;
+                if b != a {
+                    h[b][a] = block.transposed();
+                }
+            }
+        }
+        h
+    }
+
+    /// The Hessian with the geometric stiffness $S \otimes I_3$ replaced by
+    /// $S^+ \otimes I_3$, $S^+$ the positive part of the stress (its negative principal
+    /// stresses, i.e. compression, dropped): positive semi-definite, and equal to the exact
+    /// Hessian when neither principal stress is negative (module docs).
+    #[must_use]
+    pub fn hessian_projected(&self, x: &NodeVecs<T, 3>) -> Blocks<T, 3> {
+        let f = self.deformation_gradient(x);
+        let (_, s) = self.strain_stress(f);
+        self.hessian_with(f, positive_part(s))
+    }
+}
+
+impl<T: Real> Potential<T, 3> for Membrane<T> {
+    fn value(&self, x: &NodeVecs<T, 3>) -> T {
+        let (e, _) = self.strain_stress(self.deformation_gradient(x));
+        let tr = e[0] + e[2];
+        let norm_sq = e[0] * e[0] + T::TWO * e[1] * e[1] + e[2] * e[2];
+        self.rest_area * (self.mu * norm_sq + T::HALF * self.lambda * tr * tr)
+    }
+
+    fn gradient(&self, x: &NodeVecs<T, 3>) -> NodeVecs<T, 3> {
+        let f = self.deformation_gradient(x);
+        let (_, s) = self.strain_stress(f);
+        let a0 = self.rest_area;
+        let p0 = (f.0 * s[0] + f.1 * s[1]) * a0;
+        let p1 = (f.0 * s[1] + f.1 * s[2]) * a0;
+        let m = &self.dm_inv;
+        let g1 = p0 * m[0][0] + p1 * m[0][1];
+        let g2 = p0 * m[1][0] + p1 * m[1][1];
+        [-(g1 + g2), g1, g2]
+    }
+
+    fn hessian(&self, x: &NodeVecs<T, 3>) -> Blocks<T, 3> {
+        let f = self.deformation_gradient(x);
+        let (_, s) = self.strain_stress(f);
+        self.hessian_with(f, s)
+    }
+}

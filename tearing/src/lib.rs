@@ -1,0 +1,38 @@
+//! # folio-tearing
+//!
+//! Interactive paper tearing after seed `002_…` (Schreck, Rohmer, Hahmann, *Interactive
+//! paper tearing*), everything of it that is not physics: `no_std` + `alloc`. The physics
+//! (the implicit step of the sheet whose in-plane forces drive the tear) is
+//! `folio_solvers::sheet`.
+//!
+//! - [`candidates`]: the potential tearing points (Sec. 4.1).
+//! - [`fiber`]: the seeded Perlin fiber texture $T_{\text{fibers}}(u, v)$ (Sec. 4.2).
+//! - [`split`]: the force split, release rate and direction (Sec. 5.1-5.2, eq. 4-6).
+//! - [`advance`]: one propagation on the sheet mesh, split or slide (Sec. 5.3, Fig. 8).
+//! - [`tears`]: [`Tears`], the tearing step: fracture energy (eq. 3), Griffith (eq. 1),
+//!   propagation, the tears' paths and textures.
+//! - [`detail`]: the stochastic detail path between two tear tips (Sec. 6.1, eq. 7).
+//! - [`texture`]: the left and right alpha textures cut along a detail path (Sec. 6.2).
+//! - [`settings`]: the settings of the tearing step, [`TearSettings`].
+//! - [`error`]: [`TearingError`], the typed error of the settings and rasters.
+#![cfg_attr(not(feature = "std"), no_std)]
+
+extern crate alloc;
+
+pub mod advance;
+pub mod candidates;
+pub mod detail;
+pub mod error;
+pub mod fiber;
+pub mod settings;
+pub mod split;
+pub mod tears;
+pub mod texture;
+
+pub use advance::Edit;
+pub use candidates::{Candidate, Kind};
+pub use error::TearingError;
+pub use settings::TearSettings;
+pub use split::Split;
+pub use tears::{Evaluation, Propagation, Tear, TearStep, Tears};
+pub use texture::{AlphaPair, Side};

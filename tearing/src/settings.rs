@@ -1,0 +1,110 @@
+//! [`TearSettings`]: the parameters of the tearing step (seed `002_…` Sec. 4-6), with their
+//! units and the choices the seed leaves open.
+
+use crate::detail::DetailSettings;
+use crate::error::{TearingError, check_range};
+use crate::fiber::FiberSettings;
+
+/// Parameters of [`crate::Tears`]. Lengths in sheet units; forces in the physics' force
+/// units; release rates and fracture energies in force units per sheet unit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TearSettings {
+    /// Paper thickness $e$ of eq. 6 (sheet units).
+    pub thickness: f64,
+    /// The material constant $c$ of eq. 3 (seed default 0.005).
+    pub fracture: f64,
+    /// The damage $D \in [0, 1]$ at tear tips, eq. 3 (1 elsewhere): lower makes an existing
+    /// tear easier to extend than a new one to start.
+    pub damage: f64,
+    /// The propagation speed constant $c$ of $p_{\text{next}} = p + c\,E_r\,t$ (sheet units
+    /// per unit of $E_r$).
+    pub speed: f64,
+    /// Shortest propagation step (sheet units): a step that the Griffith criterion allows is
+    /// at least this long (the seed leaves it open; a vanishing step would make slivers).
+    pub min_step: f64,
+    /// Longest propagation step (sheet units; the seed leaves it open). A step also ends at
+    /// the far edge of the triangle it starts in, so a tear crosses at most one triangle per
+    /// propagation.
+    pub max_step: f64,
+    /// Turn (radians) above which the tip splits into two lips instead of moving on (seed
+    /// Sec. 5.3: 0.1).
+    pub turn_threshold: f64,
+    /// Tolerance $\varepsilon$ on the change of the bisector (Sec. 5.1).
+    pub bisector_tolerance: f64,
+    /// Most potential tearing points examined per step (Sec. 4.1: about ten); tear tips
+    /// first, then fingers, junctions, inward angles.
+    pub max_candidates: usize,
+    /// Boundary angle (radians) beyond $\pi$ above which a vertex is an inward angle.
+    pub inward_angle: f64,
+    /// Snap distance for new vertices, relative to the triangle (barycentric): a point this
+    /// close to an edge or a vertex goes onto it (no slivers).
+    pub snap: f64,
+    /// The fiber texture of eq. 3 and eq. 7.
+    pub fibers: FiberSettings,
+    /// The detail path of eq. 7.
+    pub detail: DetailSettings,
+    /// Alpha texture resolution (pixels per sheet unit).
+    pub texture_density: f64,
+}
+
+impl Default for TearSettings {
+    /// The seed's $c = 0.005$ and 0.1 rad, with a thickness of 0.01, damage 0.5, speed
+    /// 50 (a step of 0.125 at $E_r = E_f$ for a mean fiber value) and steps between 0.05 and 0.6 sheet units, ten candidates, inward angles
+    /// beyond $\pi + 0.3$, snap 0.12, 32 texture pixels per sheet unit.
+    fn default() -> Self {
+        Self {
+            thickness: 0.01,
+            fracture: 0.005,
+            damage: 0.5,
+            speed: 50.0,
+            min_step: 0.05,
+            max_step: 0.6,
+            turn_threshold: 0.1,
+            bisector_tolerance: 1e-6,
+            max_candidates: 10,
+            inward_angle: 0.3,
+            snap: 0.12,
+            fibers: FiberSettings::default(),
+            detail: DetailSettings::default(),
+            texture_density: 32.0,
+        }
+    }
+}
+
+impl TearSettings {
+    /// Checks every field.
+    ///
+    /// # Errors
+    /// [`TearingError`] naming the first bad field.
+    pub fn validate(&self) -> Result<(), TearingError> {
+        check_range("TearSettings.thickness", self.thickness, 1e-9, 1e3)?;
+        check_range("TearSettings.fracture", self.fracture, 0.0, 1e12)?;
+        check_range("TearSettings.damage", self.damage, 0.0, 1.0)?;
+        check_range("TearSettings.speed", self.speed, 0.0, 1e6)?;
+        check_range("TearSettings.min_step", self.min_step, 1e-6, 1e6)?;
+        check_range("TearSettings.max_step", self.max_step, self.min_step, 1e6)?;
+        check_range("TearSettings.turn_threshold", self.turn_threshold, 0.0, 3.2)?;
+        check_range(
+            "TearSettings.bisector_tolerance",
+            self.bisector_tolerance,
+            0.0,
+            1.0,
+        )?;
+        check_range(
+            "TearSettings.max_candidates",
+            self.max_candidates as f64,
+            1.0,
+            1e4,
+        )?;
+        check_range("TearSettings.inward_angle", self.inward_angle, 0.0, 3.2)?;
+        check_range("TearSettings.snap", self.snap, 0.0, 0.3)?;
+        check_range(
+            "TearSettings.texture_density",
+            self.texture_density,
+            1.0,
+            4096.0,
+        )?;
+        self.fibers.validate()?;
+        self.detail.validate()
+    }
+}

@@ -1,0 +1,467 @@
+//! [`Tears`]: the tearing step of seed `002_…` (Fig. 4, steps 1-3) on a [`SheetMesh`]:
+//! potential tearing points, fracture energy (eq. 3), force split and release rate
+//! (eq. 4-6), the Griffith criterion (eq. 1), one propagation, and the detail path drawn into
+//! the tear's alpha textures (eq. 7).
+//!
+//! **One step** ([`Tears::step`]) examines every candidate ([`crate::candidates`]) with the
+//! in-plane stretching gradients of the triangles from the physics, and propagates the one
+//! whose release rate exceeds its fracture energy by the largest ratio
+//! $E_r / E_f$ (the seed treats the candidates one after the other with a physics step
+//! between; the caller does that by calling `step` again after a physics step). The step
+//! length is $c_{\text{speed}} E_r$ clamped to
+//! [`TearSettings::min_step`]..[`TearSettings::max_step`].
+//!
+//! **Fracture energy** (eq. 3): $E_f(p) = c\,T_{\text{fibers}}(u, v)\,d_p$ with $d_p = D$ at
+//! tear tips and 1 elsewhere.
+//!
+//! **Tears.** A propagation from a tip extends that tear. Any other start begins a new
+//! tear; when the start lies on an existing tear's path (a lip, seed Sec. 5.3: "the tear
+//! could thus even branch at this point"), the new tear is a branch and its alpha textures
+//! start as a copy of its parent's (Sec. 6.2).
+
+use alloc::vec::Vec;
+
+use folio_geometry::SheetMesh;
+use folio_geometry::sheet::SheetError;
+use folio_kernels::{Real, Vec3Ops, math};
+
+use crate::advance::{Advance, Edit, advance, wedge};
+use crate::candidates::{Candidate, Kind, collect};
+use crate::detail::{Raster, detail_path};
+use crate::error::TearingError;
+use crate::fiber::FiberTexture;
+use crate::settings::TearSettings;
+use crate::split::{Pull, Split, split_forces, unit};
+use crate::texture::{AlphaPair, Side};
+
+/// One tear: its path in the pattern, its tip, and its alpha textures.
+#[derive(Clone, Debug)]
+pub struct Tear<T> {
+    /// The tear it branched from.
+    pub parent: Option<usize>,
+    /// The tip vertex (`None` once the tear has reached the boundary).
+    pub tip: Option<u32>,
+    /// Pattern points from the start to the tip.
+    pub path: Vec<[T; 2]>,
+    /// Unit pattern direction of the last segment.
+    pub direction: [T; 2],
+    /// $T_{\text{left}}$ and $T_{\text{right}}$ (Sec. 6.2).
+    pub alpha: AlphaPair,
+}
+
+/// A candidate with its split and fracture energy.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Evaluation<T> {
+    /// The point.
+    pub candidate: Candidate,
+    /// Force split, release rate and direction (eq. 4-6).
+    pub split: Split<T>,
+    /// $E_f$ (eq. 3).
+    pub fracture_energy: T,
+    /// `true` when the direction points into the sheet.
+    pub inward: bool,
+}
+
+/// A propagation that happened.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Propagation<T> {
+    /// Index of the tear in [`Tears::tears`].
+    pub tear: usize,
+    /// Why the start vertex was a candidate.
+    pub kind: Kind,
+    /// Pattern point of the old tip.
+    pub from: [T; 2],
+    /// Pattern point of the new tip.
+    pub to: [T; 2],
+    /// $E_r$ and $E_f$ at the start.
+    pub release_rate: T,
+    /// $E_f$ at the start.
+    pub fracture_energy: T,
+    /// What the mesh edit was.
+    pub edit: Edit,
+}
+
+/// What [`Tears::step`] did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TearStep<T> {
+    /// Candidates examined.
+    pub candidates: usize,
+    /// The propagation, if one happened.
+    pub propagation: Option<Propagation<T>>,
+    /// A propagation the Griffith criterion allowed but the mesh refused (the sheet is
+    /// unchanged; reported, not fatal).
+    pub refused: Option<SheetError>,
+}
+
+/// The tears of one sheet and the tearing step's buffers (module docs).
+#[derive(Clone, Debug)]
+pub struct Tears<T: Real> {
+    settings: TearSettings,
+    fibers: FiberTexture,
+    raster: Raster,
+    tears: Vec<Tear<T>>,
+    candidates: Vec<Candidate>,
+    evaluations: Vec<Evaluation<T>>,
+    pulls: Vec<Pull<T>>,
+    pixels: Vec<(u32, u32)>,
+}
+
+impl<T: Real> Tears<T> {
+    /// No tears yet, on a sheet whose pattern spans $[0, W] \times [0, H]$ (`size`).
+    ///
+    /// # Errors
+    /// [`TearingError`] for bad settings or size.
+    pub fn new(settings: TearSettings, size: [f64; 2]) -> Result<Self, TearingError> {
+        settings.validate()?;
+        let px = |x: f64| {
+            // Ceiling without std: the truncation, plus one when it cut something off.
+            let n = (x * settings.texture_density).clamp(1.0, 8192.0);
+            let k = n as u32;
+            if f64::from(k) < n { k + 1 } else { k }
+        };
+        let raster = Raster::new(px(size[0]), px(size[1]), size[0], size[1])?;
+        Ok(Self {
+            fibers: FiberTexture::new(settings.fibers)?,
+            settings,
+            raster,
+            tears: Vec::new(),
+            candidates: Vec::new(),
+            evaluations: Vec::new(),
+            pulls: Vec::new(),
+            pixels: Vec::new(),
+        })
+    }
+
+    /// The settings.
+    #[must_use]
+    pub fn settings(&self) -> &TearSettings {
+        &self.settings
+    }
+
+    /// The fiber texture.
+    #[must_use]
+    pub fn fibers(&self) -> &FiberTexture {
+        &self.fibers
+    }
+
+    /// The raster of the alpha textures.
+    #[must_use]
+    pub fn raster(&self) -> &Raster {
+        &self.raster
+    }
+
+    /// The tears so far.
+    #[must_use]
+    pub fn tears(&self) -> &[Tear<T>] {
+        &self.tears
+    }
+
+    /// The candidates of the last step with their splits.
+    #[must_use]
+    pub fn evaluations(&self) -> &[Evaluation<T>] {
+        &self.evaluations
+    }
+
+    /// Tip vertices of the open tears.
+    pub fn tips(&self) -> impl Iterator<Item = u32> + '_ {
+        self.tears.iter().filter_map(|t| t.tip)
+    }
+
+    /// $E_f$ at pattern point `p` (eq. 3), with $d_p = D$ for a tip.
+    #[must_use]
+    pub fn fracture_energy(&self, p: [T; 2], tip: bool) -> T {
+        let fiber = self.fibers.value(p[0].to_f64(), p[1].to_f64());
+        let damage = if tip { self.settings.damage } else { 1.0 };
+        T::from_f64(self.settings.fracture * fiber * damage)
+    }
+
+    /// Examines the candidates of `mesh` (module docs). `gradients[t][k]` is
+    /// $\partial V_t / \partial x$ of triangle `t`'s stretching energy at its corner `k`;
+    /// `fingers` are the vertices held by fingers, `junctions` the cone layer's junction
+    /// points.
+    pub fn evaluate(
+        &mut self,
+        mesh: &SheetMesh<T>,
+        gradients: &[[T::Vec3; 3]],
+        fingers: &[u32],
+        junctions: &[u32],
+    ) {
+        let tips: Vec<u32> = self.tips().collect();
+        collect(
+            &mut self.candidates,
+            mesh,
+            &tips,
+            fingers,
+            junctions,
+            T::from_f64(self.settings.inward_angle),
+            self.settings.max_candidates,
+        );
+        self.evaluations.clear();
+        for &candidate in &self.candidates {
+            let v = candidate.vertex;
+            self.pulls.clear();
+            let mut normal = T::Vec3::ZERO;
+            for h in mesh.fan_iter(v) {
+                let t = h as usize / 3;
+                let Some(g) = gradients.get(t) else { continue };
+                let corner = h as usize % 3;
+                let [a, b, c] = mesh.triangles()[t].map(|i| mesh.positions()[i as usize]);
+                let centroid = (a + b + c) * T::from_f64(1.0 / 3.0);
+                self.pulls.push(Pull {
+                    force: -g[corner],
+                    toward: centroid - mesh.positions()[v as usize],
+                    gradient: deformation_gradient(mesh, t),
+                });
+                normal += triangle_normal(mesh, t);
+            }
+            let normal = unit::<T>(normal);
+            let b0 = outward(mesh, v, normal);
+            let split = split_forces(
+                &self.pulls,
+                normal,
+                b0,
+                T::from_f64(self.settings.thickness),
+                T::from_f64(self.settings.bisector_tolerance),
+            );
+            let inward = split.release_rate > T::ZERO && wedge(mesh, v, split.direction).is_some();
+            let p = mesh.pattern()[v as usize];
+            self.evaluations.push(Evaluation {
+                candidate,
+                split,
+                fracture_energy: self.fracture_energy(p, candidate.kind == Kind::Tip),
+                inward,
+            });
+        }
+    }
+
+    /// Propagates the evaluation of the last [`Tears::evaluate`] that passes the Griffith
+    /// criterion $E_r \ge E_f$ (eq. 1) by the largest ratio, if any (module docs).
+    pub fn propagate(&mut self, mesh: &mut SheetMesh<T>) -> TearStep<T> {
+        let mut step = TearStep {
+            candidates: self.evaluations.len(),
+            propagation: None,
+            refused: None,
+        };
+        let tiny = T::from_f64(1e-30);
+        let best = self
+            .evaluations
+            .iter()
+            .filter(|e| e.inward && e.split.release_rate >= e.fracture_energy)
+            .map(|e| (e.split.release_rate / (e.fracture_energy + tiny), *e))
+            .fold(None, |best: Option<(T, Evaluation<T>)>, x| match best {
+                Some(b) if b.0 >= x.0 => Some(b),
+                _ => Some(x),
+            });
+        let Some((_, e)) = best else { return step };
+        let v = e.candidate.vertex;
+        let from = mesh.pattern()[v as usize];
+        let tear = self.tears.iter().position(|t| t.tip == Some(v));
+        let t = e.split.direction;
+        let straight = tear.is_some_and(|i| {
+            let d = self.tears[i].direction;
+            let cos = (d[0] * t[0] + d[1] * t[1]).to_f64().clamp(-1.0, 1.0);
+            libm_acos(cos) <= self.settings.turn_threshold
+        });
+        let length = T::from_f64(
+            (self.settings.speed * e.split.release_rate.to_f64())
+                .clamp(self.settings.min_step, self.settings.max_step),
+        );
+        let outcome: Advance = match advance(
+            mesh,
+            v,
+            t,
+            length,
+            straight,
+            T::from_f64(self.settings.snap),
+        ) {
+            Ok(a) => a,
+            Err(err) => {
+                step.refused = Some(err);
+                return step;
+            }
+        };
+        let to = match outcome.tip {
+            Some(q) => mesh.pattern()[q as usize],
+            None => from_cut_end(mesh, &outcome, from),
+        };
+        let index = match tear {
+            Some(i) => i,
+            None => self.start_tear(from, t),
+        };
+        self.extend(index, from, to, outcome.tip);
+        step.propagation = Some(Propagation {
+            tear: index,
+            kind: e.candidate.kind,
+            from,
+            to,
+            release_rate: e.split.release_rate,
+            fracture_energy: e.fracture_energy,
+            edit: outcome.edit,
+        });
+        step
+    }
+
+    /// [`Tears::evaluate`] then [`Tears::propagate`].
+    pub fn step(
+        &mut self,
+        mesh: &mut SheetMesh<T>,
+        gradients: &[[T::Vec3; 3]],
+        fingers: &[u32],
+        junctions: &[u32],
+    ) -> TearStep<T> {
+        self.evaluate(mesh, gradients, fingers, junctions);
+        self.propagate(mesh)
+    }
+
+    /// A new tear starting at `from` in direction `t`: a branch when `from` lies on an
+    /// existing tear's path, its textures copied from the parent's lip on the side `t`
+    /// leaves to.
+    fn start_tear(&mut self, from: [T; 2], t: [T; 2]) -> usize {
+        let tolerance = 1e-6 * (self.raster.sheet_width() + self.raster.sheet_height());
+        let parent = self.tears.iter().position(|tear| {
+            tear.path
+                .windows(2)
+                .any(|w| segment_distance(from, w[0], w[1]) <= tolerance)
+        });
+        let alpha = match parent {
+            Some(i) => {
+                let d = self.tears[i].direction;
+                let side = if d[0] * t[1] - d[1] * t[0] >= T::ZERO {
+                    Side::Left
+                } else {
+                    Side::Right
+                };
+                self.tears[i].alpha.split_from(side)
+            }
+            None => AlphaPair::new(self.raster),
+        };
+        self.tears.push(Tear {
+            parent,
+            tip: None,
+            path: alloc::vec![from],
+            direction: [T::ZERO; 2],
+            alpha,
+        });
+        self.tears.len() - 1
+    }
+
+    /// Appends the segment `from → to` to tear `index`: path, direction, tip, detail path and
+    /// alpha textures.
+    fn extend(&mut self, index: usize, from: [T; 2], to: [T; 2], tip: Option<u32>) {
+        let (a, b) = (
+            [from[0].to_f64(), from[1].to_f64()],
+            [to[0].to_f64(), to[1].to_f64()],
+        );
+        detail_path(
+            &mut self.pixels,
+            &self.raster,
+            &self.fibers,
+            a,
+            b,
+            &self.settings.detail,
+        );
+        // The band the cut may change: four standard deviations of the stress field and two
+        // pixels.
+        let pixel = self.raster.pixel_size();
+        let band = 4.0 * self.settings.detail.sigma + 2.0 * pixel[0].max(pixel[1]);
+        let tear = &mut self.tears[index];
+        tear.alpha.cut(&self.pixels, a, b, band);
+        let d = [to[0] - from[0], to[1] - from[1]];
+        let len = math::sqrt(d[0] * d[0] + d[1] * d[1]);
+        if len > T::ZERO {
+            tear.direction = [d[0] / len, d[1] / len];
+        }
+        tear.path.push(to);
+        tear.tip = tip;
+    }
+}
+
+/// Where a separating cut ended: the pattern point of the cut's far end.
+fn from_cut_end<T: Real>(mesh: &SheetMesh<T>, outcome: &Advance, from: [T; 2]) -> [T; 2] {
+    outcome
+        .cut
+        .and_then(|c| c.splits[1])
+        .map_or(from, |(q, _)| mesh.pattern()[q as usize])
+}
+
+/// $\arccos$ in f64 through the math shim (`atan2(sqrt(1 - c^2), c)`).
+fn libm_acos(c: f64) -> f64 {
+    math::atan2(math::sqrt((1.0 - c * c).max(0.0)), c)
+}
+
+/// Distance from pattern point `p` to segment `a → b`.
+fn segment_distance<T: Real>(p: [T; 2], a: [T; 2], b: [T; 2]) -> f64 {
+    let (p, a, b) = (
+        [p[0].to_f64(), p[1].to_f64()],
+        [a[0].to_f64(), a[1].to_f64()],
+        [b[0].to_f64(), b[1].to_f64()],
+    );
+    let e = [b[0] - a[0], b[1] - a[1]];
+    let len2 = e[0] * e[0] + e[1] * e[1];
+    let s = if len2 > 0.0 {
+        (((p[0] - a[0]) * e[0] + (p[1] - a[1]) * e[1]) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let d = [a[0] + s * e[0] - p[0], a[1] + s * e[1] - p[1]];
+    math::sqrt(d[0] * d[0] + d[1] * d[1])
+}
+
+/// The columns $F e_u$, $F e_v$ of triangle `t`'s deformation gradient
+/// $F = [x_1 - x_0,\ x_2 - x_0]\,[u_1 - u_0,\ u_2 - u_0]^{-1}$ (zero for a degenerate
+/// pattern triangle).
+#[must_use]
+pub fn deformation_gradient<T: Real>(mesh: &SheetMesh<T>, t: usize) -> [T::Vec3; 2] {
+    let [i0, i1, i2] = mesh.triangles()[t];
+    let (p0, p1, p2) = (
+        mesh.pattern()[i0 as usize],
+        mesh.pattern()[i1 as usize],
+        mesh.pattern()[i2 as usize],
+    );
+    let (a, c) = (p1[0] - p0[0], p1[1] - p0[1]);
+    let (b, d) = (p2[0] - p0[0], p2[1] - p0[1]);
+    let det = a * d - b * c;
+    if det == T::ZERO {
+        return [T::Vec3::ZERO; 2];
+    }
+    let x0 = mesh.positions()[i0 as usize];
+    let (e1, e2) = (
+        mesh.positions()[i1 as usize] - x0,
+        mesh.positions()[i2 as usize] - x0,
+    );
+    let inv = T::ONE / det;
+    // Dm^{-1} = [[d, -b], [-c, a]] / det.
+    [(e1 * d - e2 * c) * inv, (e2 * a - e1 * b) * inv]
+}
+
+/// Area-weighted normal of triangle `t` (twice its 3D area times the unit normal).
+fn triangle_normal<T: Real>(mesh: &SheetMesh<T>, t: usize) -> T::Vec3 {
+    let [a, b, c] = mesh.triangles()[t].map(|i| mesh.positions()[i as usize]);
+    (b - a).cross(c - a)
+}
+
+/// The initial bisector $b^0$ at boundary vertex `v` (Sec. 5.1): the bisector of the two
+/// boundary tangents, pointing out of the sheet; the outward normal of the border where the
+/// boundary is straight.
+fn outward<T: Real>(mesh: &SheetMesh<T>, v: u32, normal: T::Vec3) -> T::Vec3 {
+    let Some((next, prev)) = mesh.boundary_neighbours(v) else {
+        return T::Vec3::ZERO;
+    };
+    let x = mesh.positions();
+    let p = x[v as usize];
+    let u1 = unit::<T>(x[next as usize] - p);
+    let u2 = unit::<T>(x[prev as usize] - p);
+    let sum = u1 + u2;
+    let walk = unit::<T>(x[next as usize] - x[prev as usize]);
+    let normal_out = unit::<T>(walk.cross(normal));
+    let angle = mesh.pattern_angle(v).to_f64();
+    let margin = 0.05;
+    let s = unit::<T>(sum);
+    if angle > core::f64::consts::PI + margin && s != T::Vec3::ZERO {
+        s
+    } else if angle < core::f64::consts::PI - margin && s != T::Vec3::ZERO {
+        -s
+    } else {
+        normal_out
+    }
+}
