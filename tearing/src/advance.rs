@@ -40,7 +40,9 @@ pub struct Advance {
 }
 
 /// Advances the tear at boundary vertex `p` by `length` along the unit pattern direction
-/// `t` (module docs); `straight` allows the slide. `snap` is the barycentric snap distance.
+/// `t` (module docs); `straight` allows the slide. `snap` is the snap distance relative to a
+/// triangle's longest edge ([`SheetMesh::insert_at`]); on the far edge it is relative to
+/// that edge's length.
 ///
 /// # Errors
 /// [`SheetError::OutsideSheet`] when no triangle of the fan of `p` contains the direction

@@ -36,8 +36,8 @@ pub struct TearSettings {
     pub max_candidates: usize,
     /// Boundary angle (radians) beyond $\pi$ above which a vertex is an inward angle.
     pub inward_angle: f64,
-    /// Snap distance for new vertices, relative to the triangle (barycentric): a point this
-    /// close to an edge or a vertex goes onto it (no slivers).
+    /// Snap distance for new vertices, relative to the longest edge of the triangle that
+    /// holds them: a point this close to a vertex or an edge goes onto it (no slivers).
     pub snap: f64,
     /// The fiber texture of eq. 3 and eq. 7.
     pub fibers: FiberSettings,

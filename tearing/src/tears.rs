@@ -104,6 +104,7 @@ pub struct Tears<T: Real> {
     evaluations: Vec<Evaluation<T>>,
     pulls: Vec<Pull<T>>,
     pixels: Vec<(u32, u32)>,
+    tip_buffer: Vec<u32>,
 }
 
 impl<T: Real> Tears<T> {
@@ -129,6 +130,7 @@ impl<T: Real> Tears<T> {
             evaluations: Vec::new(),
             pulls: Vec::new(),
             pixels: Vec::new(),
+            tip_buffer: Vec::new(),
         })
     }
 
@@ -186,11 +188,13 @@ impl<T: Real> Tears<T> {
         fingers: &[u32],
         junctions: &[u32],
     ) {
-        let tips: Vec<u32> = self.tips().collect();
+        self.tip_buffer.clear();
+        self.tip_buffer
+            .extend(self.tears.iter().filter_map(|t| t.tip));
         collect(
             &mut self.candidates,
             mesh,
-            &tips,
+            &self.tip_buffer,
             fingers,
             junctions,
             T::from_f64(self.settings.inward_angle),

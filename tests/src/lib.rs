@@ -319,3 +319,27 @@ pub fn grid_stars(n: usize, m: usize) -> Vec<GridStar> {
     }
     out
 }
+
+/// Twice the signed area and the longest squared edge of a pattern triangle.
+#[must_use]
+pub fn area2_and_longest(u: [[f64; 2]; 3]) -> (f64, f64) {
+    let d = |a: [f64; 2], b: [f64; 2]| [b[0] - a[0], b[1] - a[1]];
+    let (e1, e2, e3) = (d(u[0], u[1]), d(u[0], u[2]), d(u[1], u[2]));
+    let sq = |e: [f64; 2]| e[0] * e[0] + e[1] * e[1];
+    (
+        e1[0] * e2[1] - e1[1] * e2[0],
+        sq(e1).max(sq(e2)).max(sq(e3)),
+    )
+}
+
+/// A random counter-clockwise pattern triangle in $[-2, 2]^2$ with
+/// $2A \ge$ `shape` $\cdot\,\ell_{\max}^2$ and $\ell_{\max}^2 \ge$ `min_longest_sq`.
+pub fn pattern_triangle(r: &mut Rng, shape: f64, min_longest_sq: f64) -> [[f64; 2]; 3] {
+    loop {
+        let u = [(); 3].map(|()| [r.uniform(-2.0, 2.0), r.uniform(-2.0, 2.0)]);
+        let (area2, longest) = area2_and_longest(u);
+        if area2.abs() >= shape * longest && longest >= min_longest_sq {
+            return if area2 > 0.0 { u } else { [u[0], u[2], u[1]] };
+        }
+    }
+}

@@ -290,27 +290,10 @@ fn cone_curl_jacobian() {
     assert!(worst <= FD_TOL, "cone Jacobian error {worst:e}");
 }
 
-/// Twice the signed area and the longest squared edge of a pattern triangle.
-fn area2_and_longest(u: [[f64; 2]; 3]) -> (f64, f64) {
-    let d = |a: [f64; 2], b: [f64; 2]| [b[0] - a[0], b[1] - a[1]];
-    let (e1, e2, e3) = (d(u[0], u[1]), d(u[0], u[2]), d(u[1], u[2]));
-    let sq = |e: [f64; 2]| e[0] * e[0] + e[1] * e[1];
-    (
-        e1[0] * e2[1] - e1[1] * e2[0],
-        sq(e1).max(sq(e2)).max(sq(e3)),
-    )
-}
-
 /// A random counter-clockwise rest triangle of the pattern with $2A \ge 0.05\,\ell_{\max}^2$
 /// (angles down to about 3 degrees).
 fn pattern_triangle(r: &mut Rng) -> [[f64; 2]; 3] {
-    loop {
-        let u = [(); 3].map(|()| [r.uniform(-2.0, 2.0), r.uniform(-2.0, 2.0)]);
-        let (area2, longest) = area2_and_longest(u);
-        if area2.abs() >= 0.05 * longest && longest >= 0.04 {
-            return if area2 > 0.0 { u } else { [u[0], u[2], u[1]] };
-        }
-    }
+    folio_tests::pattern_triangle(r, 0.05, 0.04)
 }
 
 /// A random hinge pattern `[u0, u1, u2, u3]`: edge `(u0, u1)`, `u2` left and `u3` right of it,
@@ -327,8 +310,8 @@ fn pattern_hinge(r: &mut Rng) -> [[f64; 2]; 4] {
             [u0[0] + a * t[0] + h * n[0], u0[1] + a * t[1] + h * n[1]]
         };
         let (u2, u3) = (side(r, 1.0), side(r, -1.0));
-        let (aa, la) = area2_and_longest([u0, u1, u2]);
-        let (ab, lb) = area2_and_longest([u1, u0, u3]);
+        let (aa, la) = folio_tests::area2_and_longest([u0, u1, u2]);
+        let (ab, lb) = folio_tests::area2_and_longest([u1, u0, u3]);
         if aa >= 0.05 * la && ab >= 0.05 * lb {
             return [u0, u1, u2, u3];
         }

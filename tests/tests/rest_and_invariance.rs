@@ -231,26 +231,9 @@ fn invariant_terms_are_invariant_under_rigid_motion() {
     assert!(worst <= 1e-10, "rigid motion changed a term by {worst:e}");
 }
 
-/// Twice the signed area and the longest squared edge of a pattern triangle.
-fn area2_and_longest(u: [[f64; 2]; 3]) -> (f64, f64) {
-    let d = |a: [f64; 2], b: [f64; 2]| [b[0] - a[0], b[1] - a[1]];
-    let (e1, e2, e3) = (d(u[0], u[1]), d(u[0], u[2]), d(u[1], u[2]));
-    let sq = |e: [f64; 2]| e[0] * e[0] + e[1] * e[1];
-    (
-        e1[0] * e2[1] - e1[1] * e2[0],
-        sq(e1).max(sq(e2)).max(sq(e3)),
-    )
-}
-
 /// A random counter-clockwise pattern triangle with $2A \ge 0.2\,\ell_{\max}^2$.
 fn pattern_triangle(r: &mut Rng) -> [[f64; 2]; 3] {
-    loop {
-        let u = [(); 3].map(|()| [r.uniform(-2.0, 2.0), r.uniform(-2.0, 2.0)]);
-        let (area2, longest) = area2_and_longest(u);
-        if area2.abs() >= 0.2 * longest && longest >= 0.1 {
-            return if area2 > 0.0 { u } else { [u[0], u[2], u[1]] };
-        }
-    }
+    folio_tests::pattern_triangle(r, 0.2, 0.1)
 }
 
 /// A random hinge pattern: the triangle `[u0, u1, u2]` and `u3` on the other side of the
@@ -259,7 +242,7 @@ fn pattern_hinge(r: &mut Rng) -> [[f64; 2]; 4] {
     loop {
         let [u0, u1, u2] = pattern_triangle(r);
         let u3 = [r.uniform(-3.0, 3.0), r.uniform(-3.0, 3.0)];
-        let (area2, longest) = area2_and_longest([u1, u0, u3]);
+        let (area2, longest) = folio_tests::area2_and_longest([u1, u0, u3]);
         if area2 >= 0.2 * longest {
             return [u0, u1, u2, u3];
         }
@@ -311,8 +294,8 @@ fn hinge_fold_energy_matches_the_dihedral_angle() {
     for _ in 0..200 {
         let u = pattern_hinge(&mut rng);
         let hinge = Hinge::new(u).unwrap();
-        let (area_a, _) = area2_and_longest([u[0], u[1], u[2]]);
-        let (area_b, _) = area2_and_longest([u[1], u[0], u[3]]);
+        let (area_a, _) = folio_tests::area2_and_longest([u[0], u[1], u[2]]);
+        let (area_b, _) = folio_tests::area2_and_longest([u[1], u[0], u[3]]);
         let (area_a, area_b) = (area_a / 2.0, area_b / 2.0);
         let flat = embed(&u);
         let edge = flat[1] - flat[0];
@@ -365,7 +348,7 @@ fn membrane_uniaxial_plane_stress() {
         let (sx, sy) = ((1.0 + 2.0 * eps).sqrt(), (1.0 - 2.0 * nu * eps).sqrt());
         let (q, t) = (rng.rotation(), rng.vec(3.0));
         let x = rigid(&u.map(|p| DVec3::new(sx * p[0], sy * p[1], 0.0)), q, t);
-        let area = area2_and_longest(u).0 / 2.0;
+        let area = folio_tests::area2_and_longest(u).0 / 2.0;
         let expected = area * y * eps * eps / 2.0;
         let v = m.value(&x);
         assert!(

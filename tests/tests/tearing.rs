@@ -241,6 +241,89 @@ fn asymmetric_pulls_follow_the_hyperbola() {
     );
 }
 
+/// Seed Fig. 16: alternating which hand pulls turns the tear one way, then the other. The
+/// left finger pulls (down and out) for 40 frames while the right one holds still, then the
+/// right one for 40 frames, and so on; the tear's sideways direction changes sign at least
+/// three times.
+#[test]
+fn alternating_hands_tear_a_zigzag() {
+    let mut sheet = notched(SheetSettings::default());
+    let a = sheet.grab([4.5, 0.0]).expect("grab");
+    let b = sheet.grab([7.5, 0.0]).expect("grab");
+    let (mut xa, mut xb) = (sheet.fingers()[a].target, sheet.fingers()[b].target);
+    let h = sheet.settings().time_step;
+    for frame in 0..300 {
+        if (frame / 40) % 2 == 0 {
+            xa += DVec3::new(-0.4, -0.4, 0.0) * h;
+        } else {
+            xb += DVec3::new(0.4, -0.4, 0.0) * h;
+        }
+        sheet.move_finger(a, xa).expect("move");
+        sheet.move_finger(b, xb).expect("move");
+        let report = sheet.step();
+        assert!(report.status.advanced(), "frame {frame}: {report:?}");
+        assert_sound(&sheet, frame);
+    }
+    let path = &sheet.tears().tears()[0].path;
+    // Sideways direction of each segment longer than 0.05, then its sign changes.
+    let signs: Vec<f64> = path
+        .windows(2)
+        .filter(|w| (w[1][0] - w[0][0]).abs() > 0.05)
+        .map(|w| (w[1][0] - w[0][0]).signum())
+        .collect();
+    let turns = signs.windows(2).filter(|s| s[0] != s[1]).count();
+    println!(
+        "zigzag: tear length {:.2}, {} points, {turns} changes of sideways direction",
+        tear_length(&sheet),
+        path.len()
+    );
+    assert!(turns >= 3, "{turns} turns: {path:?}");
+    assert!(tear_length(&sheet) >= 4.0);
+}
+
+/// Seed Fig. 13: twisting the bottom border (each hand holds a corner with two fingers and
+/// turns about the vertical, the two hands in opposite directions, drawing apart slowly)
+/// bends the sheet into cones; the tear starts at a junction point.
+#[test]
+fn a_twist_starts_its_tear_at_a_junction_point() {
+    let mut sheet = TearingSheet::<f64>::new(SheetSettings::default()).expect("sheet");
+    let mut fingers = Vec::new();
+    for (points, centre, side) in [
+        ([[0.0, 0.0], [1.5, 0.0]], 0.75, -1.0),
+        ([[12.0, 0.0], [10.5, 0.0]], 11.25, 1.0),
+    ] {
+        for p in points {
+            fingers.push((sheet.grab(p).expect("grab"), p, centre, side));
+        }
+    }
+    let h = sheet.settings().time_step;
+    for frame in 0..120 {
+        let t = (frame + 1) as f64 * h;
+        let angle = t; // one radian per second
+        for &(f, p, centre, side) in &fingers {
+            let d = p[0] - centre;
+            let target = DVec3::new(
+                centre + side * 0.05 * t + d * angle.cos(),
+                p[1],
+                side * d * angle.sin(),
+            );
+            sheet.move_finger(f, target).expect("move");
+        }
+        let report = sheet.step();
+        assert!(report.status.advanced(), "frame {frame}: {report:?}");
+        assert_sound(&sheet, frame);
+        if !sheet.propagations().is_empty() {
+            break;
+        }
+    }
+    let first = sheet.propagations().first().expect("no tear within 2 s");
+    println!(
+        "twist: the tear starts at {:?} ({:?})",
+        first.from, first.kind
+    );
+    assert_eq!(first.kind, Kind::Junction);
+}
+
 /// Same bits twice.
 #[test]
 fn tearing_is_deterministic() {
