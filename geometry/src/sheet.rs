@@ -20,4 +20,4 @@ mod mesh;
 pub use cones::{ConeLayer, ConeSettings, Region};
 pub use edit::Cut;
 pub use error::SheetError;
-pub use mesh::{FanIter, NONE, SheetMesh};
+pub use mesh::{FanIter, NONE, SheetMesh, next as next_half_edge, prev as prev_half_edge};

@@ -14,7 +14,7 @@
 //!   piece between the two tear paths comes off; the tear ends.
 
 use folio_geometry::SheetMesh;
-use folio_geometry::sheet::{Cut, NONE, SheetError};
+use folio_geometry::sheet::{Cut, SheetError, next_half_edge};
 use folio_kernels::Real;
 
 /// How the mesh changed.
@@ -142,10 +142,4 @@ fn crossing<T: Real>(o: [T; 2], t: [T; 2], b: [T; 2], c: [T; 2]) -> Option<T> {
     let lambda = (w[0] * e[1] - w[1] * e[0]) / den;
     let s = (w[0] * t[1] - w[1] * t[0]) / den;
     (lambda > T::ZERO && s >= T::ZERO && s <= T::ONE).then_some(s)
-}
-
-/// The half-edge after `h` in its triangle.
-fn next_half_edge(h: u32) -> u32 {
-    debug_assert!(h != NONE);
-    if h % 3 == 2 { h - 2 } else { h + 1 }
 }

@@ -264,7 +264,7 @@ impl<T: Real> Tears<T> {
         let straight = tear.is_some_and(|i| {
             let d = self.tears[i].direction;
             let cos = (d[0] * t[0] + d[1] * t[1]).to_f64().clamp(-1.0, 1.0);
-            libm_acos(cos) <= self.settings.turn_threshold
+            acos(cos) <= self.settings.turn_threshold
         });
         let length = T::from_f64(
             (self.settings.speed * e.split.release_rate.to_f64())
@@ -389,7 +389,7 @@ fn from_cut_end<T: Real>(mesh: &SheetMesh<T>, outcome: &Advance, from: [T; 2]) -
 }
 
 /// $\arccos$ in f64 through the math shim (`atan2(sqrt(1 - c^2), c)`).
-fn libm_acos(c: f64) -> f64 {
+fn acos(c: f64) -> f64 {
     math::atan2(math::sqrt((1.0 - c * c).max(0.0)), c)
 }
 

@@ -452,14 +452,14 @@ pub(crate) fn inside_tolerance<T: Real>() -> T {
 /// The half-edge before `h` in its triangle (it ends where `h` starts).
 #[inline]
 #[must_use]
-pub(crate) fn prev(h: u32) -> u32 {
+pub fn prev(h: u32) -> u32 {
     if h % 3 == 0 { h + 2 } else { h - 1 }
 }
 
 /// The half-edge after `h` in its triangle.
 #[inline]
 #[must_use]
-pub(crate) fn next(h: u32) -> u32 {
+pub fn next(h: u32) -> u32 {
     if h % 3 == 2 { h - 2 } else { h + 1 }
 }
 

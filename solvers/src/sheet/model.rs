@@ -14,7 +14,7 @@
 use alloc::vec::Vec;
 
 use folio_geometry::SheetMesh;
-use folio_geometry::sheet::NONE;
+use folio_geometry::sheet::{NONE, next_half_edge};
 use folio_kernels::Real;
 use folio_kernels::gravity::Gravity;
 use folio_kernels::hinge::Hinge;
@@ -153,8 +153,8 @@ impl<T: Real> SheetModel<T> {
                     continue;
                 }
                 let (a, b) = mesh.half_edge(h);
-                let c = mesh.half_edge(next_in_triangle(h)).1;
-                let d = mesh.half_edge(next_in_triangle(g)).1;
+                let c = mesh.half_edge(next_half_edge(h)).1;
+                let d = mesh.half_edge(next_half_edge(g)).1;
                 let nodes = [a, b, c, d];
                 let hinge = Hinge::new(nodes.map(|i| p[i as usize])).map_err(|_| {
                     TearingSheetError::Kernel {
@@ -173,11 +173,6 @@ impl<T: Real> SheetModel<T> {
         }
         Ok(())
     }
-}
-
-/// The half-edge after `h` in its triangle.
-fn next_in_triangle(h: u32) -> u32 {
-    if h % 3 == 2 { h - 2 } else { h + 1 }
 }
 
 impl<T: Real> Model<T> for SheetModel<T> {
