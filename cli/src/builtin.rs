@@ -1,7 +1,7 @@
 //! The built-in scenes (`scenes/*.toml`, embedded in the binary).
 
 /// Name and text of every built-in scene; the first is the default.
-pub const SCENES: [(&str, &str); 7] = [
+pub const SCENES: [(&str, &str); 11] = [
     ("page-turn", include_str!("../../scenes/page-turn.toml")),
     ("peek", include_str!("../../scenes/peek.toml")),
     (
@@ -15,6 +15,13 @@ pub const SCENES: [(&str, &str); 7] = [
         "mass-spring-turn",
         include_str!("../../scenes/mass-spring-turn.toml"),
     ),
+    (
+        "tear-straight",
+        include_str!("../../scenes/tear-straight.toml"),
+    ),
+    ("tear-curved", include_str!("../../scenes/tear-curved.toml")),
+    ("tear-zigzag", include_str!("../../scenes/tear-zigzag.toml")),
+    ("tear-twist", include_str!("../../scenes/tear-twist.toml")),
 ];
 
 /// The text of built-in scene `name`.

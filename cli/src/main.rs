@@ -14,9 +14,12 @@
 extern crate alloc;
 
 mod export;
+mod obj;
 mod outputs;
 mod render;
 mod run;
+mod sheet_run;
+mod sheet_view;
 mod timeline;
 
 use std::io::IsTerminal;
@@ -242,6 +245,20 @@ fn print_summary(report: &Report, out: &Path, seconds: f64) {
     }
     if let Some([left, right, held]) = s.final_pages {
         println!("  pages at the end left {left}, right {right}, held {held}");
+    }
+    if let Some(lengths) = &s.tear_lengths {
+        let list: Vec<String> = lengths.iter().map(|l| format!("{l:.2}")).collect();
+        println!(
+            "  tears            {} ({} long), {} propagations, first from {}",
+            lengths.len(),
+            if list.is_empty() {
+                "-".to_string()
+            } else {
+                list.join(", ")
+            },
+            s.propagations_total.unwrap_or(0),
+            s.tear_start.as_deref().unwrap_or("-")
+        );
     }
     println!("  report           {}", out.join("report.json").display());
 }

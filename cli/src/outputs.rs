@@ -1,19 +1,31 @@
 //! What a run writes besides `report.json`: the contact sheet (`contact_sheet.png`), the
 //! animation (`animation.glb`) and the timeline (`timeline.svg`), filled frame by frame as
-//! the run goes ([`Outputs::observe`]) and written at its end ([`Outputs::write`]).
+//! the run goes ([`Outputs::observe`]) and written at its end ([`Outputs::write`]); a sheet
+//! run also writes its last frame: the torn mesh (`torn_sheet.obj`, [`crate::obj`]), every
+//! tear's alpha textures (`tear-K-left.png`, `tear-K-right.png`) and a picture
+//! (`torn_sheet.png`), drawn with the tears' cut-outs ([`crate::sheet_view`]) as the
+//! contact sheet's tiles are.
 
 use std::path::{Path, PathBuf};
 
 use folio_geometry::mesh::TriMesh;
+use folio_solvers::sheet::TearingSheet;
+use folio_tearing::Side;
 
 use crate::export::Animation;
-use crate::render::{ContactSheet, SheetSettings, book_bounds};
+use crate::render::{self, ContactSheet, SheetSettings, book_bounds};
 use crate::run::{Report, RunError, Shape};
+use crate::sheet_view::{
+    Cutout, SHEET_EYE, SHEET_LIGHT, mesh_bounds, render_mesh, sheet_bounds, tear_png,
+};
 use crate::timeline::timeline_svg;
-use folio::scene::Scene;
+use folio::scene::{ModelKind, Scene};
 
 /// Frames per second of every scene (the animation's clock).
 const FPS: f32 = 60.0;
+
+/// The picture of a sheet run's last frame (pixels).
+const PICTURE: [u32; 2] = [960, 720];
 
 /// The outputs of one run (module docs).
 pub struct Outputs {
@@ -25,6 +37,14 @@ pub struct Outputs {
     every: u32,
     timeline: bool,
     mesh: TriMesh,
+    /// The sheet's files: mesh, textures, picture (sheet runs).
+    sheet_files: [bool; 3],
+    /// The sheet at the last frame (sheet runs that write a sheet file).
+    last_sheet: Option<TearingSheet<f64>>,
+    /// The scene's name (file headers).
+    scene: String,
+    /// The render settings (paper, view) of every picture.
+    settings: SheetSettings,
     /// The first error met while observing (the run goes on; writing reports it).
     error: Option<RunError>,
 }
@@ -40,15 +60,25 @@ impl Outputs {
     /// A contact sheet or animation that cannot be set up.
     pub fn new(scene: &Scene) -> Result<Self, RunError> {
         let o = &scene.output;
-        let [w, h] = scene.page_size();
-        let sheet = if o.contact_sheet {
-            let mut settings = SheetSettings::default();
+        let is_sheet = *scene.model.get_ref() == ModelKind::Sheet;
+        let mut settings = SheetSettings::default();
+        let bounds = if is_sheet {
+            settings.paper.thickness =
+                folio::settings::sheet_settings(scene).tearing.thickness as f32;
+            settings.eye = SHEET_EYE;
+            settings.light = SHEET_LIGHT;
+            sheet_bounds(folio::sheet::size(scene))
+        } else {
             settings.paper.thickness = scene
                 .book
                 .as_ref()
                 .and_then(|b| b.get_ref().thickness.as_ref())
                 .map_or(settings.paper.thickness, |t| *t.get_ref() as f32);
-            Some(ContactSheet::new(settings, book_bounds(w, h)).map_err(fail)?)
+            let [w, h] = scene.page_size();
+            book_bounds(w, h)
+        };
+        let sheet = if o.contact_sheet {
+            Some(ContactSheet::new(settings, bounds).map_err(fail)?)
         } else {
             None
         };
@@ -64,6 +94,14 @@ impl Outputs {
             every: o.every().max(1),
             timeline: o.timeline,
             mesh: TriMesh::new(),
+            sheet_files: if is_sheet {
+                o.sheet_files()
+            } else {
+                [false; 3]
+            },
+            last_sheet: None,
+            scene: scene.name.clone(),
+            settings,
             error: None,
         })
     }
@@ -71,6 +109,11 @@ impl Outputs {
     /// Called after every frame of `frames`: meshes the frames the sheet and the animation
     /// take (the last frame always goes on the sheet).
     pub fn observe(&mut self, frame: u32, frames: u32, shape: Shape<'_>) {
+        if let Shape::Sheet(sheet) = shape {
+            if frame + 1 == frames && self.sheet_files.contains(&true) {
+                self.last_sheet = Some(sheet.clone());
+            }
+        }
         // Tiles at frames 0, s, 2s, ... and the last frame: at most `tiles` in all.
         let stride = match self.tiles {
             0 | 1 => frames.max(1),
@@ -88,7 +131,17 @@ impl Outputs {
         }
         if on_sheet {
             if let Some(sheet) = &mut self.sheet {
-                sheet.add_frame(&self.mesh, frame, shape.thickness());
+                match shape {
+                    Shape::Sheet(torn) => {
+                        let cutout = Cutout::new(torn);
+                        sheet.add_frame_cut(&self.mesh, frame, shape.thickness(), |t, uv| {
+                            cutout.keep(t, uv)
+                        });
+                    }
+                    _ => {
+                        sheet.add_frame(&self.mesh, frame, shape.thickness());
+                    }
+                }
             }
         }
         if in_animation {
@@ -133,6 +186,80 @@ impl Outputs {
             std::fs::write(&path, timeline_svg(&steps, &stretch)).map_err(fail)?;
             written.push((path, format!("{} frames", steps.len())));
         }
+        if let Some(sheet) = &self.last_sheet {
+            let frame = report.frames.len().saturating_sub(1);
+            write_sheet(
+                &mut written,
+                dir,
+                sheet,
+                self.sheet_files,
+                &self.settings,
+                &format!(
+                    "Folio: scene {}, the torn sheet after frame {frame}",
+                    self.scene
+                ),
+            )?;
+        }
         Ok(written)
     }
+}
+
+/// Writes the sheet files of `files` (mesh, textures, picture) of the last frame `sheet`
+/// into `dir`, adding each to `written`; `title` heads the mesh file.
+fn write_sheet(
+    written: &mut Vec<(PathBuf, String)>,
+    dir: &Path,
+    sheet: &TearingSheet<f64>,
+    files: [bool; 3],
+    settings: &SheetSettings,
+    title: &str,
+) -> Result<(), RunError> {
+    let s = sheet.settings();
+    let size = [s.width, s.height];
+    let [mesh, textures, picture] = files;
+    if mesh {
+        let path = dir.join("torn_sheet.obj");
+        std::fs::write(&path, crate::obj::sheet_obj(sheet.mesh(), size, title)).map_err(fail)?;
+        let m = sheet.mesh();
+        written.push((
+            path,
+            format!(
+                "{} vertices, {} triangles",
+                m.vertex_count(),
+                m.triangle_count()
+            ),
+        ));
+    }
+    if textures {
+        for (k, tear) in sheet.tears().tears().iter().enumerate() {
+            for (side, name) in [(Side::Left, "left"), (Side::Right, "right")] {
+                let path = dir.join(format!("tear-{k}-{name}.png"));
+                std::fs::write(&path, tear_png(&tear.alpha, side).map_err(fail)?).map_err(fail)?;
+                let r = tear.alpha.raster();
+                written.push((path, format!("{} x {} alpha", r.width_px(), r.height_px())));
+            }
+        }
+    }
+    if picture {
+        let mut view = TriMesh::new();
+        render_mesh(sheet.mesh(), size, &mut view);
+        let cutout = Cutout::new(sheet);
+        let settings = SheetSettings {
+            tile: PICTURE,
+            columns: 1,
+            ..*settings
+        };
+        let (w, h, rgba) = render::picture(
+            settings,
+            mesh_bounds(&view),
+            &view,
+            settings.paper.thickness,
+            |t, uv| cutout.keep(t, uv),
+        )
+        .map_err(fail)?;
+        let path = dir.join("torn_sheet.png");
+        std::fs::write(&path, render::encode_png(w, h, &rgba).map_err(fail)?).map_err(fail)?;
+        written.push((path, format!("{w} x {h}")));
+    }
+    Ok(())
 }

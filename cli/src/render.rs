@@ -45,6 +45,13 @@ const LABEL: ([u8; 3], [u8; 3]) = ([20, 20, 24], [236, 234, 226]);
 /// Colour of the 1-pixel line between tiles and of empty cells.
 const GUTTER: [u8; 3] = [40, 42, 48];
 
+/// Direction from the framed box's centre to the eye for a book: above, in front (+Z,
+/// beyond the page's foot) and a little to the right, so both page blocks and a turning
+/// page standing over the spine are seen.
+pub const BOOK_EYE: [f32; 3] = [0.25, 1.0, 0.8];
+/// Direction from the framed box's centre to the light for a book: above, left, in front.
+pub const BOOK_LIGHT: [f32; 3] = [-0.55, 1.0, 0.45];
+
 /// How the sheet is laid out and rendered.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SheetSettings {
@@ -56,6 +63,12 @@ pub struct SheetSettings {
     pub supersample: u32,
     /// The paper's optics ([`Paper`]); its thickness is one page's.
     pub paper: Paper,
+    /// Direction from the framed box's centre to the eye (unnormalized, finite, not zero).
+    /// Default [`BOOK_EYE`].
+    pub eye: [f32; 3],
+    /// Direction from the framed box's centre to the point light (unnormalized, finite,
+    /// not zero). Default [`BOOK_LIGHT`].
+    pub light: [f32; 3],
 }
 
 impl Default for SheetSettings {
@@ -65,6 +78,8 @@ impl Default for SheetSettings {
             columns: 4,
             supersample: 2,
             paper: Paper::default(),
+            eye: BOOK_EYE,
+            light: BOOK_LIGHT,
         }
     }
 }
@@ -78,6 +93,81 @@ impl Default for SheetSettings {
 pub fn book_bounds(page_width: f64, page_height: f64) -> [[f32; 3]; 2] {
     let (w, h) = (page_width as f32, page_height as f32);
     [[-w, 0.0, 0.0], [w, 0.75 * w, h]]
+}
+
+/// The stage of `settings` framing `bounds`, once both are checked.
+fn stage(settings: &SheetSettings, bounds: [[f32; 3]; 2]) -> Result<Stage, RenderError> {
+    let [w, h] = settings.tile;
+    if !(1..=MAX_TILE_SIZE).contains(&w) || !(1..=MAX_TILE_SIZE).contains(&h) {
+        return Err(RenderError::TileSize {
+            tile: settings.tile,
+        });
+    }
+    if !(1..=MAX_COLUMNS).contains(&settings.columns) {
+        return Err(RenderError::Columns {
+            columns: settings.columns,
+        });
+    }
+    if !(1..=MAX_SUPERSAMPLE).contains(&settings.supersample) {
+        return Err(RenderError::Supersample {
+            supersample: settings.supersample,
+        });
+    }
+    if let Some(field) = settings.paper.invalid_field() {
+        return Err(RenderError::Paper { field });
+    }
+    for (axis, (&lo, &hi)) in bounds[0].iter().zip(&bounds[1]).enumerate() {
+        if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
+            return Err(RenderError::Bounds { axis });
+        }
+    }
+    for (field, d) in [("eye", settings.eye), ("light", settings.light)] {
+        if !(vector::finite(d) && vector::length(d) > 0.0) {
+            return Err(RenderError::Direction { field });
+        }
+    }
+    Ok(Stage::new(
+        bounds,
+        [w as usize, h as usize],
+        settings.supersample as usize,
+        settings.paper,
+        [settings.eye, settings.light],
+    ))
+}
+
+/// One picture of `mesh` framed by `bounds`, a single tile of `settings` (no label, no
+/// gutter; `columns` unused), drawn as [`ContactSheet::add_frame_cut`] draws a tile: pages
+/// `thickness` thick, samples where `keep` fails cut away. Returns `(width, height, RGBA8)`.
+///
+/// # Errors
+/// [`RenderError`] as [`ContactSheet::new`].
+pub fn picture(
+    settings: SheetSettings,
+    bounds: [[f32; 3]; 2],
+    mesh: &TriMesh,
+    thickness: f32,
+    keep: impl Fn(usize, [f32; 2]) -> bool,
+) -> Result<(u32, u32, Vec<u8>), RenderError> {
+    let mut stage = stage(&settings, bounds)?;
+    let image = stage.render(mesh, thickness, keep);
+    Ok((settings.tile[0], settings.tile[1], image.rgba))
+}
+
+/// An RGBA8 image (`width` x `height`, rows top first) encoded as a PNG.
+///
+/// # Errors
+/// The encoder's error as an [`io::Error`] (also for a buffer of the wrong size).
+pub fn encode_png(width: u32, height: u32, rgba: &[u8]) -> io::Result<Vec<u8>> {
+    let mut bytes = Vec::new();
+    {
+        let mut encoder = png::Encoder::new(&mut bytes, width, height);
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Eight);
+        let mut writer = encoder.write_header()?;
+        writer.write_image_data(rgba)?;
+        writer.finish()?;
+    }
+    Ok(bytes)
 }
 
 /// A contact sheet being filled tile by tile (module docs).
@@ -99,36 +189,7 @@ impl ContactSheet {
     /// [`RenderError`] for a setting out of its documented range or bounds that are not
     /// finite with min <= max.
     pub fn new(settings: SheetSettings, bounds: [[f32; 3]; 2]) -> Result<Self, RenderError> {
-        let [w, h] = settings.tile;
-        if !(1..=MAX_TILE_SIZE).contains(&w) || !(1..=MAX_TILE_SIZE).contains(&h) {
-            return Err(RenderError::TileSize {
-                tile: settings.tile,
-            });
-        }
-        if !(1..=MAX_COLUMNS).contains(&settings.columns) {
-            return Err(RenderError::Columns {
-                columns: settings.columns,
-            });
-        }
-        if !(1..=MAX_SUPERSAMPLE).contains(&settings.supersample) {
-            return Err(RenderError::Supersample {
-                supersample: settings.supersample,
-            });
-        }
-        if let Some(field) = settings.paper.invalid_field() {
-            return Err(RenderError::Paper { field });
-        }
-        for (axis, (&lo, &hi)) in bounds[0].iter().zip(&bounds[1]).enumerate() {
-            if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
-                return Err(RenderError::Bounds { axis });
-            }
-        }
-        let stage = Stage::new(
-            bounds,
-            [w as usize, h as usize],
-            settings.supersample as usize,
-            settings.paper,
-        );
+        let stage = stage(&settings, bounds)?;
         Ok(Self {
             settings,
             stage,
@@ -146,19 +207,28 @@ impl ContactSheet {
     /// Returns `false` (and draws nothing) when the sheet already holds [`MAX_TILES`].
     /// Triangles with a non-finite or out-of-range vertex are skipped.
     pub fn add_frame(&mut self, mesh: &TriMesh, frame: u32, thickness: f64) -> bool {
+        self.add_frame_cut(mesh, frame, thickness, |_, _| true)
+    }
+
+    /// [`ContactSheet::add_frame`] with cut-outs: a sample of triangle `t` at texture
+    /// coordinates `uv` is drawn only where `keep(t, uv)` holds
+    /// ([`stage::Stage::render`]).
+    pub fn add_frame_cut(
+        &mut self,
+        mesh: &TriMesh,
+        frame: u32,
+        thickness: f64,
+        keep: impl Fn(usize, [f32; 2]) -> bool,
+    ) -> bool {
         let thickness = if thickness.is_finite() && thickness > 0.0 {
             thickness as f32
         } else {
             self.settings.paper.thickness
         };
-        self.push(mesh, thickness, frame)
-    }
-
-    fn push(&mut self, mesh: &TriMesh, thickness: f32, frame: u32) -> bool {
         if self.tiles.len() >= MAX_TILES {
             return false;
         }
-        let image = self.stage.render(mesh, thickness);
+        let image = self.stage.render(mesh, thickness, keep);
         let mut rgba = image.rgba;
         let [w, h] = self.settings.tile.map(|v| v as usize);
         // A 1-pixel gutter on the right and bottom edges separates the tiles.
@@ -239,16 +309,7 @@ impl ContactSheet {
     /// The encoder's error as an [`io::Error`].
     pub fn encode_png(&self) -> io::Result<Vec<u8>> {
         let (width, height, rgba) = self.to_rgba();
-        let mut bytes = Vec::new();
-        {
-            let mut encoder = png::Encoder::new(&mut bytes, width, height);
-            encoder.set_color(png::ColorType::Rgba);
-            encoder.set_depth(png::BitDepth::Eight);
-            let mut writer = encoder.write_header()?;
-            writer.write_image_data(&rgba)?;
-            writer.finish()?;
-        }
-        Ok(bytes)
+        encode_png(width, height, &rgba)
     }
 
     /// Writes the sheet to `path` as a PNG ([`ContactSheet::encode_png`]).
@@ -384,6 +445,10 @@ mod tests {
         assert_eq!(
             bad(SheetSettings { paper, ..d }),
             RenderError::Paper { field: "roughness" }
+        );
+        assert_eq!(
+            bad(SheetSettings { eye: [0.0; 3], ..d }),
+            RenderError::Direction { field: "eye" }
         );
         let nan = [[0.0, f32::NAN, 0.0], [1.0, 1.0, 1.0]];
         assert_eq!(

@@ -11,6 +11,7 @@ use folio_solvers::page::cone::{ConePage, ConeSettings};
 use folio_solvers::page::dog::DogPage;
 use folio_solvers::page::spring::SpringPage;
 use folio_solvers::page::{PageModel, PageStatus, TouchScript, frame_metrics};
+use folio_solvers::sheet::TearingSheet;
 
 use folio::events;
 use folio::settings::{book_settings, spring_settings};
@@ -18,6 +19,8 @@ use serde::Serialize;
 
 use folio::fixtures::{self, Kind};
 use folio::scene::{ModelKind, Scene};
+
+use crate::sheet_run::TearingLog;
 
 /// The render grid page models are measured on (24 x 34 quads, half a page unit).
 const RENDER_QUADS: (usize, usize) = (24, 34);
@@ -49,6 +52,14 @@ pub struct FrameRecord {
     pub contact_tests: Option<usize>,
     /// A finger-bookmarking snapshot was taken (DOG book).
     pub snapshot: Option<bool>,
+    /// Tear propagations in the frame (sheet).
+    pub propagations: Option<u32>,
+    /// Propagations the Griffith criterion allowed but the mesh refused (sheet).
+    pub refused: Option<u32>,
+    /// Edge flips of the cone remesh (sheet).
+    pub flips: Option<u32>,
+    /// Triangles of the sheet after the frame (sheet).
+    pub triangles: Option<usize>,
     /// How the step went.
     pub status: String,
     /// Some coordinate is not finite.
@@ -95,6 +106,12 @@ pub struct Summary {
     pub paper_coverage: Option<f64>,
     /// Pages in the left block, the right block and the grip at the end (DOG book).
     pub final_pages: Option<[u32; 3]>,
+    /// Tear propagations over the run (sheet).
+    pub propagations_total: Option<usize>,
+    /// The length of every tear in the pattern at the end (sheet units; sheet).
+    pub tear_lengths: Option<Vec<f64>>,
+    /// The kind of point the first tear started at (sheet; null without a tear).
+    pub tear_start: Option<String>,
 }
 
 /// A finished run (`report.json`).
@@ -108,6 +125,9 @@ pub struct Report {
     pub summary: Summary,
     /// Every frame.
     pub frames: Vec<FrameRecord>,
+    /// The tears' log (sheet).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tearing: Option<TearingLog>,
 }
 
 /// Why a checked scene could not run.
@@ -122,7 +142,7 @@ impl core::fmt::Display for RunError {
 
 impl core::error::Error for RunError {}
 
-fn fail(e: impl core::fmt::Display) -> RunError {
+pub(crate) fn fail(e: impl core::fmt::Display) -> RunError {
     RunError(e.to_string())
 }
 
@@ -138,6 +158,8 @@ pub enum Shape<'a> {
     Book(&'a Book<f64>),
     /// A page model's page.
     Page(&'a dyn PageModel<f64>),
+    /// The tearing sheet.
+    Sheet(&'a TearingSheet<f64>),
 }
 
 impl Shape<'_> {
@@ -148,6 +170,7 @@ impl Shape<'_> {
         match self {
             Self::Book(book) => book.active_thickness(),
             Self::Page(_) => BookParams::default().page_thickness,
+            Self::Sheet(sheet) => sheet.settings().tearing.thickness,
         }
     }
 
@@ -163,6 +186,11 @@ impl Shape<'_> {
                     .ok_or_else(|| fail("render grid"))?;
                 let thickness = BookParams::default().page_thickness;
                 folio_solvers::page::mesh(*page, grid, thickness, out).map_err(fail)
+            }
+            Self::Sheet(sheet) => {
+                let s = sheet.settings();
+                crate::sheet_view::render_mesh(sheet.mesh(), [s.width, s.height], out);
+                Ok(())
             }
         }
     }
@@ -204,6 +232,9 @@ pub fn run(
     mut observe: impl FnMut(u32, u32, Shape<'_>),
 ) -> Result<Report, RunError> {
     let model = *scene.model.get_ref();
+    if model == ModelKind::Sheet {
+        return crate::sheet_run::run(scene, progress, observe);
+    }
     let mut records = Vec::new();
     let mut final_pages = None;
     if let Some((script, seed)) = touch_input(scene)? {
@@ -223,6 +254,7 @@ pub fn run(
                 other = Some(Box::new(SpringPage::new(s).map_err(fail)?));
             }
             ModelKind::Dog => dog = Some(DogPage::new(book_settings(scene)).map_err(fail)?),
+            ModelKind::Sheet => return Err(fail("a sheet is held by hands")),
         }
         let page: &mut dyn PageModel<f64> = match (&mut dog, &mut other) {
             (Some(d), _) => d,
@@ -252,6 +284,10 @@ pub fn run(
                 terms: None,
                 contact_tests: None,
                 snapshot: None,
+                propagations: None,
+                refused: None,
+                flips: None,
+                triangles: None,
                 status: match step.status {
                     PageStatus::Moved => "Moved",
                     PageStatus::Unreachable => "Unreachable",
@@ -313,6 +349,10 @@ pub fn run(
                 terms: Some(report.census.potentials + report.census.constraints),
                 contact_tests: Some(report.contacts.tested),
                 snapshot: Some(report.snapshot),
+                propagations: None,
+                refused: None,
+                flips: None,
+                triangles: None,
                 status: format!("{:?}", report.solver.status),
                 nonfinite: !finite,
             });
@@ -327,6 +367,7 @@ pub fn run(
         model: model.name(),
         summary: summarize(&records, scene.effect_names(), final_pages),
         frames: records,
+        tearing: None,
     })
 }
 
@@ -343,7 +384,8 @@ fn quantile(v: &[f64], q: f64) -> f64 {
         .unwrap_or(0.0)
 }
 
-fn summarize(
+/// The summary of `records` (the sheet's tear fields are left empty).
+pub(crate) fn summarize(
     records: &[FrameRecord],
     effects: Vec<String>,
     final_pages: Option<[u32; 3]>,
@@ -377,6 +419,9 @@ fn summarize(
         paper_coverage: None,
         snapshots_total: records.iter().map(|r| r.snapshot.map(usize::from)).sum(),
         final_pages,
+        propagations_total: None,
+        tear_lengths: None,
+        tear_start: None,
     }
 }
 
@@ -425,6 +470,24 @@ impl Report {
                     Some(v) if v <= bound => {}
                     _ => out.push(format!("{name} {got:?} above {bound}")),
                 }
+            }
+        }
+        if let Some(min) = expect.tear_length_min.as_ref().map(|v| *v.get_ref()) {
+            let longest = s
+                .tear_lengths
+                .as_ref()
+                .and_then(|l| l.iter().copied().reduce(f64::max));
+            if !longest.is_some_and(|l| l >= min) {
+                out.push(format!("longest tear {longest:?}, expected at least {min}"));
+            }
+        }
+        if let Some(start) = expect.tear_start.as_ref().map(|v| *v.get_ref()) {
+            if s.tear_start.as_deref() != Some(start.name()) {
+                out.push(format!(
+                    "the first tear started at {:?}, expected {}",
+                    s.tear_start,
+                    start.name()
+                ));
             }
         }
         if let Some(most) = expect.failed_steps {

@@ -23,6 +23,10 @@ pub struct Scene {
     pub effects: Option<Spanned<Vec<Spanned<String>>>>,
     /// The book around a DOG page (`model = "dog"` only).
     pub book: Option<Spanned<BookSection>>,
+    /// The sheet of a tearing scene (`model = "sheet"` only).
+    pub sheet: Option<Spanned<SheetSection>>,
+    /// The tearing step's parameters (`model = "sheet"` only).
+    pub tearing: Option<Spanned<TearingSection>>,
     /// Potential weights of the DOG book (`model = "dog"` only).
     pub weights: Option<Spanned<WeightsSection>>,
     /// Time step and solver settings.
@@ -39,7 +43,7 @@ pub struct Scene {
 }
 
 /// A scene's stated expectations, checked against the run's summary.
-#[derive(Clone, Copy, Debug, Default, Deserialize)]
+#[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Expect {
     /// Pages left, right and held at the end (DOG book).
@@ -54,6 +58,34 @@ pub struct Expect {
     pub penetration_max: Option<f64>,
     /// Most frames whose step failed (`Stalled`, a failed line search or factorization).
     pub failed_steps: Option<usize>,
+    /// Lower bound on the length of the longest tear in the pattern (sheet units; sheet).
+    pub tear_length_min: Option<Spanned<f64>>,
+    /// Why the first tear started (sheet): `"inward-angle"`, `"junction"`, `"finger"`.
+    pub tear_start: Option<Spanned<TearStart>>,
+}
+
+/// The kind of potential tearing point a tear starts at (seed `002_…` Sec. 4.1).
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum TearStart {
+    /// A boundary vertex with an inward angle (a notch).
+    InwardAngle,
+    /// A junction point of flat and curved regions.
+    Junction,
+    /// A finger, or the boundary vertex nearest to one.
+    Finger,
+}
+
+impl TearStart {
+    /// The name used in scene files and reports.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::InwardAngle => "inward-angle",
+            Self::Junction => "junction",
+            Self::Finger => "finger",
+        }
+    }
 }
 
 /// The page models (issue 5's interface).
@@ -66,16 +98,20 @@ pub enum ModelKind {
     Cone,
     /// The mass-spring page of seed 003.
     MassSpring,
+    /// The tearing sheet of seed 002, held and pulled by hands.
+    Sheet,
 }
 
-/// Every effect a scene may name, in the order reports list them.
-pub const EFFECTS: [&str; 7] = [
+/// Every effect a scene may name.
+pub const EFFECTS: [&str; 9] = [
     "gravity",
     "glue",
     "collisions",
     "cover",
     "blocks",
     "bookmarking",
+    "bending",
+    "cones",
     "tearing",
 ];
 
@@ -87,6 +123,7 @@ impl ModelKind {
             Self::Dog => "dog",
             Self::Cone => "cone",
             Self::MassSpring => "mass-spring",
+            Self::Sheet => "sheet",
         }
     }
 
@@ -104,6 +141,7 @@ impl ModelKind {
             ],
             Self::Cone => &[],
             Self::MassSpring => &["gravity", "collisions"],
+            Self::Sheet => &["gravity", "bending", "cones", "tearing"],
         }
     }
 }
@@ -138,6 +176,67 @@ pub struct WeightsSection {
     pub pull: Option<Spanned<f64>>,
 }
 
+/// The sheet of a tearing scene (seed `002_…`; `folio_solvers::sheet::SheetSettings`);
+/// omitted keys keep the sheet's defaults. Lengths in sheet units.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SheetSection {
+    /// Pattern width (12).
+    pub width: Option<Spanned<f64>>,
+    /// Pattern height (9).
+    pub height: Option<Spanned<f64>>,
+    /// Quads across, two triangles each (8).
+    pub nx: Option<Spanned<u32>>,
+    /// Quads up (6).
+    pub ny: Option<Spanned<u32>>,
+    /// A slit cut before the run: a polyline of grid vertices from a point on the border,
+    /// each segment along a grid line or a quad's diagonal.
+    pub notch: Option<Spanned<Vec<Spanned<[f64; 2]>>>>,
+    /// 2D Young's modulus of the membrane (force per sheet unit; 0.003).
+    pub stretch_modulus: Option<Spanned<f64>>,
+    /// Poisson's ratio in [0, 0.5) (0.3).
+    pub poisson: Option<Spanned<f64>>,
+    /// Weight of the hinge bending energy (1e-5).
+    pub bending: Option<Spanned<f64>>,
+    /// Mass per pattern area (1e-8).
+    pub density: Option<Spanned<f64>>,
+    /// Gravitational acceleration along -y when `gravity` is simulated (9.81).
+    pub gravity: Option<Spanned<f64>>,
+    /// Propagations per frame at most (2).
+    pub max_propagations: Option<Spanned<u32>>,
+}
+
+/// The tearing step's parameters (seed `002_…` eq. 1-7; `folio_tearing::TearSettings`);
+/// omitted keys keep the defaults.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TearingSection {
+    /// Paper thickness $e$ of eq. 6 (sheet units; 0.01).
+    pub thickness: Option<Spanned<f64>>,
+    /// The material constant $c$ of eq. 3 (0.005).
+    pub fracture: Option<Spanned<f64>>,
+    /// Damage $D$ at tear tips, eq. 3 (0.5).
+    pub damage: Option<Spanned<f64>>,
+    /// Propagation speed: sheet units per unit of release rate (50).
+    pub speed: Option<Spanned<f64>>,
+    /// Shortest propagation step (sheet units; 0.05).
+    pub min_step: Option<Spanned<f64>>,
+    /// Longest propagation step (sheet units; 0.6).
+    pub max_step: Option<Spanned<f64>>,
+    /// Turn (radians) above which the tip splits into two lips (0.1).
+    pub turn_threshold: Option<Spanned<f64>>,
+    /// Snap distance of new vertices, relative to the triangle's longest edge (0.12).
+    pub snap: Option<Spanned<f64>>,
+    /// Alpha texture pixels per sheet unit (32).
+    pub texture_density: Option<Spanned<f64>>,
+    /// Seed of the fiber texture.
+    pub fiber_seed: Option<Spanned<u64>>,
+    /// Weight of the stress field against the fibers in the detail path, eq. 7 (0.8).
+    pub detail_weight: Option<Spanned<f64>>,
+    /// Width $\sigma$ of the detail path's stress field (sheet units; 0.1).
+    pub detail_sigma: Option<Spanned<f64>>,
+}
+
 /// Time step and solver settings; omitted keys keep the model's defaults.
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -162,6 +261,39 @@ pub struct InputSection {
     pub pages: Option<Spanned<u32>>,
     /// Timed events: one gesture (a grab, drags, a release) in page coordinates.
     pub events: Option<Spanned<Vec<Spanned<EventSpec>>>>,
+    /// The hands holding a sheet (`model = "sheet"` only).
+    pub hands: Option<Spanned<Vec<Spanned<HandSpec>>>>,
+}
+
+/// One hand holding the sheet (`[[input.hands]]`): its fingers pinch the sheet at the
+/// start, move with the hand as one rigid body, and let go together.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HandSpec {
+    /// The pattern points `[u, v]` (sheet units) the fingers pinch, one or more.
+    pub fingers: Spanned<Vec<Spanned<[f64; 2]>>>,
+    /// How the hand moves: segments in time order, the hand still between them.
+    #[serde(default)]
+    pub moves: Vec<Spanned<MoveSpec>>,
+    /// When the hand lets go (seconds; default: it holds to the end).
+    pub release: Option<Spanned<f64>>,
+}
+
+/// One segment of a hand's motion (`moves = [{ ... }]`): from `start` to `end` the hand
+/// translates at `velocity` and turns at `spin` about its centre (the mean of its
+/// fingers, moving with it).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MoveSpec {
+    /// Start (seconds).
+    pub start: Spanned<f64>,
+    /// End (seconds; default: the end of the run).
+    pub end: Option<Spanned<f64>>,
+    /// Velocity `[x, y, z]` (sheet units per second; x along u, y along v, z out of the
+    /// flat sheet).
+    pub velocity: Option<Spanned<[f64; 3]>>,
+    /// Angular velocity `[x, y, z]` (radians per second, right-handed about the axis).
+    pub spin: Option<Spanned<[f64; 3]>>,
 }
 
 /// One timed input event (`[[input.events]]`): when (`frame` or `time`) and what (`grab`,
@@ -203,6 +335,13 @@ pub struct OutputSection {
     /// Write `timeline.svg`.
     #[serde(default = "yes")]
     pub timeline: bool,
+    /// Write the torn sheet's mesh `torn_sheet.obj` (sheet; default true).
+    pub mesh: Option<Spanned<bool>>,
+    /// Write every tear's alpha textures `tear-K-left.png`, `tear-K-right.png` (sheet;
+    /// default true).
+    pub textures: Option<Spanned<bool>>,
+    /// Write the picture of the last frame `torn_sheet.png` (sheet; default true).
+    pub picture: Option<Spanned<bool>>,
 }
 
 impl Default for OutputSection {
@@ -214,6 +353,9 @@ impl Default for OutputSection {
             animation: true,
             animation_every: None,
             timeline: true,
+            mesh: None,
+            textures: None,
+            picture: None,
         }
     }
 }
@@ -229,6 +371,12 @@ impl OutputSection {
     #[must_use]
     pub fn every(&self) -> u32 {
         self.animation_every.as_ref().map_or(5, |v| *v.get_ref())
+    }
+
+    /// Whether a sheet run writes its torn mesh, its tear textures and its picture.
+    #[must_use]
+    pub fn sheet_files(&self) -> [bool; 3] {
+        [&self.mesh, &self.textures, &self.picture].map(|v| v.as_ref().is_none_or(|v| *v.get_ref()))
     }
 }
 
@@ -310,6 +458,12 @@ impl Scene {
         self.check_input(text, model)?;
         self.check_effects(text, model)?;
         self.check_settings(text, model)?;
+        if model == ModelKind::Sheet {
+            crate::sheet::check(self)
+                .map_err(|(span, message)| SceneError::at(text, Some(span), message))?;
+        } else {
+            self.check_not_sheet(text)?;
+        }
         let o = &self.output;
         if let Some(v) = &o.sheet_tiles {
             if !(1..=256).contains(v.get_ref()) {
@@ -350,6 +504,34 @@ impl Scene {
             }
         }
         Ok(())
+    }
+
+    /// Refuses the keys of the sheet model in a scene of another model.
+    fn check_not_sheet(&self, text: &str) -> Result<(), SceneError> {
+        let (o, e) = (&self.output, &self.expect);
+        let spans = [
+            ("[sheet]", self.sheet.as_ref().map(Spanned::span)),
+            ("[tearing]", self.tearing.as_ref().map(Spanned::span)),
+            ("output.mesh", o.mesh.as_ref().map(Spanned::span)),
+            ("output.textures", o.textures.as_ref().map(Spanned::span)),
+            ("output.picture", o.picture.as_ref().map(Spanned::span)),
+            (
+                "expect.tear_length_min",
+                e.tear_length_min.as_ref().map(Spanned::span),
+            ),
+            (
+                "expect.tear_start",
+                e.tear_start.as_ref().map(Spanned::span),
+            ),
+        ];
+        match spans.into_iter().find_map(|(key, span)| Some((key, span?))) {
+            Some((key, span)) => Err(SceneError::at(
+                text,
+                Some(span),
+                format!("{key} is for model = \"sheet\" only"),
+            )),
+            None => Ok(()),
+        }
     }
 
     /// The page size `[width, height]` (page units): every model's page is
@@ -394,8 +576,6 @@ impl Scene {
             let name = e.get_ref().as_str();
             let message = if !EFFECTS.contains(&name) {
                 format!("unknown effect `{name}`; known: {}", EFFECTS.join(", "))
-            } else if name == "tearing" {
-                "the tearing effect is not available yet".to_string()
             } else if !model.effects().contains(&name) {
                 let has = model.effects();
                 format!(
@@ -441,7 +621,7 @@ impl Scene {
         if model == ModelKind::Cone {
             return bad(
                 section.span(),
-                "[solver] is for the dog and mass-spring models",
+                "[solver] is for the dog, mass-spring and sheet models",
             );
         }
         let s = section.get_ref();
@@ -488,6 +668,26 @@ impl Scene {
         let bad =
             |span: Range<usize>, message: &str| Err(SceneError::at(text, Some(span), message));
         let input = self.input.get_ref();
+        if model == ModelKind::Sheet {
+            let given = [
+                input.fixture.as_ref().map(Spanned::span),
+                input.events.as_ref().map(Spanned::span),
+                input.pages.as_ref().map(Spanned::span),
+            ];
+            if let Some(span) = given.into_iter().flatten().next() {
+                return bad(
+                    span,
+                    "a sheet is held by [[input.hands]], not a fixture or events",
+                );
+            }
+            return match &input.hands {
+                Some(_) => Ok(()),
+                None => bad(self.input.span(), "a sheet scene needs [[input.hands]]"),
+            };
+        }
+        if let Some(hands) = &input.hands {
+            return bad(hands.span(), "input.hands is for model = \"sheet\" only");
+        }
         let fixture = match (&input.fixture, &input.events) {
             (Some(f), None) => f,
             (None, Some(events)) => {

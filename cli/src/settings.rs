@@ -1,11 +1,12 @@
-//! The solver settings a scene describes: the DOG book's (book, effects, weights, solver)
-//! and the mass-spring page's (effects, solver). Shared by the `folio` command and the C
-//! API's scene constructor.
+//! The solver settings a scene describes: the DOG book's (book, effects, weights, solver),
+//! the mass-spring page's (effects, solver) and the tearing sheet's (sheet, tearing,
+//! effects, solver). Shared by the `folio` command and the C API's scene constructor.
 
 use folio_geometry::BookParams;
 use folio_kernels::Real;
 use folio_solvers::book::{BookSettings, Effects};
 use folio_solvers::page::spring::SpringSettings;
+use folio_solvers::sheet::{SheetEffects, SheetSettings};
 
 use crate::scene::Scene;
 
@@ -70,6 +71,57 @@ pub fn spring_settings(scene: &Scene, seed: bool) -> SpringSettings<f64> {
         let v = solver.get_ref();
         set(&mut s.time_step, v.time_step.as_ref());
         set(&mut s.substeps, v.substeps.as_ref());
+    }
+    s
+}
+
+/// The tearing sheet's settings of a sheet scene: its `[sheet]` and `[tearing]` keys, its
+/// effects and time step over the defaults of [`SheetSettings`]. Unchecked: the sheet
+/// validates them ([`SheetSettings::validate`]).
+#[must_use]
+pub fn sheet_settings(scene: &Scene) -> SheetSettings<f64> {
+    let mut s = SheetSettings::<f64>::default();
+    if let Some(sheet) = &scene.sheet {
+        let v = sheet.get_ref();
+        set(&mut s.width, v.width.as_ref());
+        set(&mut s.height, v.height.as_ref());
+        if let Some(n) = &v.nx {
+            s.nx = *n.get_ref() as usize;
+        }
+        if let Some(n) = &v.ny {
+            s.ny = *n.get_ref() as usize;
+        }
+        set(&mut s.stretch_modulus, v.stretch_modulus.as_ref());
+        set(&mut s.poisson, v.poisson.as_ref());
+        set(&mut s.bending, v.bending.as_ref());
+        set(&mut s.density, v.density.as_ref());
+        set(&mut s.gravity, v.gravity.as_ref());
+        set(&mut s.max_propagations, v.max_propagations.as_ref());
+    }
+    if let Some(tearing) = &scene.tearing {
+        let v = tearing.get_ref();
+        let t = &mut s.tearing;
+        set(&mut t.thickness, v.thickness.as_ref());
+        set(&mut t.fracture, v.fracture.as_ref());
+        set(&mut t.damage, v.damage.as_ref());
+        set(&mut t.speed, v.speed.as_ref());
+        set(&mut t.min_step, v.min_step.as_ref());
+        set(&mut t.max_step, v.max_step.as_ref());
+        set(&mut t.turn_threshold, v.turn_threshold.as_ref());
+        set(&mut t.snap, v.snap.as_ref());
+        set(&mut t.texture_density, v.texture_density.as_ref());
+        set(&mut t.fibers.seed, v.fiber_seed.as_ref());
+        set(&mut t.detail.weight, v.detail_weight.as_ref());
+        set(&mut t.detail.sigma, v.detail_sigma.as_ref());
+    }
+    s.effects = SheetEffects {
+        gravity: scene.has_effect("gravity"),
+        bending: scene.has_effect("bending"),
+        cones: scene.has_effect("cones"),
+        tearing: scene.has_effect("tearing"),
+    };
+    if let Some(solver) = &scene.solver {
+        set(&mut s.time_step, solver.get_ref().time_step.as_ref());
     }
     s
 }

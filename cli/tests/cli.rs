@@ -1,6 +1,7 @@
 //! The `folio` command end to end: the default run, every built-in scene against its stated
-//! expectations, `list`, `check` on the shipped scene files and the documentation's
-//! examples, and malformed scenes (line and column, non-zero exit, nothing half-run).
+//! expectations, the tear scenes' mesh, textures and picture, `list`, `check` on the shipped
+//! scene files and the documentation's examples, and malformed scenes (line and column,
+//! non-zero exit, nothing half-run).
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -14,6 +15,9 @@ const SCENES: [&str; 7] = [
     "cone-turn",
     "mass-spring-turn",
 ];
+
+/// The tearing sheet's built-in scenes (seed 002 Fig. 13-16).
+const TEAR_SCENES: [&str; 4] = ["tear-straight", "tear-curved", "tear-zigzag", "tear-twist"];
 
 /// A fresh scratch folder for one test.
 fn scratch(name: &str) -> PathBuf {
@@ -195,12 +199,116 @@ fn a_scene_with_and_without_each_effect() {
     }
 }
 
+/// An RGBA8 PNG decoded: width, height, pixels.
+fn decode_png(bytes: &[u8]) -> (u32, u32, Vec<u8>) {
+    let decoder = png::Decoder::new(std::io::Cursor::new(bytes));
+    let mut reader = decoder.read_info().expect("a PNG");
+    let mut buf = vec![0; reader.output_buffer_size().expect("a size")];
+    let info = reader.next_frame(&mut buf).expect("decodes");
+    assert_eq!(info.color_type, png::ColorType::Rgba);
+    buf.truncate(info.buffer_size());
+    (info.width, info.height, buf)
+}
+
+/// Every tear scene runs (all four at once, each its own process) and meets its
+/// expectations; its outputs are read back: the report's tears, the torn mesh (an OBJ
+/// whose lips are extra vertices), two decodable PNG alpha textures per tear of the
+/// raster's size whose left and right masks differ (there is a cut, transparent on
+/// opposite sides), and the picture of the torn sheet.
+#[test]
+fn tear_scenes_write_their_mesh_textures_and_picture() {
+    let dir = scratch("tears");
+    let runs: Vec<_> = TEAR_SCENES
+        .iter()
+        .map(|name| {
+            let dir = dir.clone();
+            std::thread::spawn(move || (name, folio(&dir, &["run", name, "--out", name])))
+        })
+        .collect();
+    for run in runs {
+        let (name, out) = run.join().unwrap();
+        println!("{}", text(&out.stdout));
+        assert!(out.status.success(), "{name}: {}", text(&out.stderr));
+        let out = dir.join(name);
+        check_outputs(&out, name);
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap())
+                .unwrap();
+        assert_eq!(report["model"], "sheet");
+        let summary = &report["summary"];
+        assert_eq!(summary["nonfinite_frames"], 0, "{name}");
+        let lengths = summary["tear_lengths"].as_array().unwrap();
+        assert!(!lengths.is_empty(), "{name}: no tear");
+        let tearing = &report["tearing"];
+        let tears = tearing["tears"].as_array().unwrap();
+        assert_eq!(tears.len(), lengths.len(), "{name}");
+        assert!(
+            summary["propagations_total"].as_u64().unwrap() > 0,
+            "{name}"
+        );
+        let per_frame: u64 = report["frames"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|f| f["propagations"].as_u64().unwrap())
+            .sum();
+        assert_eq!(per_frame, summary["propagations_total"].as_u64().unwrap());
+        let size = tearing["texture_size"].as_array().unwrap();
+        let size = [0, 1].map(|k| size[k].as_u64().unwrap() as u32);
+        // The torn mesh: every face in range, more vertices than the 9 x 7 of the rectangle.
+        let obj = std::fs::read_to_string(out.join("torn_sheet.obj")).unwrap();
+        let count = |prefix: &str| obj.lines().filter(|l| l.starts_with(prefix)).count();
+        let (vertices, faces) = (count("v "), count("f "));
+        assert_eq!(count("vt "), vertices, "{name}");
+        assert!(
+            vertices > 63 && faces >= 96,
+            "{name}: {vertices} vertices, {faces} faces"
+        );
+        for line in obj.lines().filter(|l| l.starts_with("f ")) {
+            for corner in line.split_whitespace().skip(1) {
+                let i: usize = corner.split('/').next().unwrap().parse().unwrap();
+                assert!((1..=vertices).contains(&i), "{name}: {line}");
+            }
+        }
+        // The textures of every tear.
+        let mut cut = false;
+        for k in 0..tears.len() {
+            let [left, right] = ["left", "right"].map(|side| {
+                let bytes = std::fs::read(out.join(format!("tear-{k}-{side}.png"))).unwrap();
+                let (w, h, rgba) = decode_png(&bytes);
+                assert_eq!([w, h], size, "{name}: tear {k} {side}");
+                rgba
+            });
+            assert_eq!(left.len(), right.len());
+            let alpha = |rgba: &[u8], i: usize| rgba[4 * i + 3];
+            let pixels = left.len() / 4;
+            let differ = (0..pixels).any(|i| alpha(&left, i) != alpha(&right, i));
+            let only_left = (0..pixels).any(|i| alpha(&left, i) == 0 && alpha(&right, i) == 255);
+            let only_right = (0..pixels).any(|i| alpha(&right, i) == 0 && alpha(&left, i) == 255);
+            cut |= differ && only_left && only_right;
+            // Opaque pixels show the paper, not black.
+            assert!(left.chunks(4).any(|p| p[3] == 255 && p[0] > 200), "{name}");
+        }
+        assert!(cut, "{name}: no tear cuts its two masks apart");
+        let (w, h, picture) = decode_png(&std::fs::read(out.join("torn_sheet.png")).unwrap());
+        assert_eq!((w, h), (960, 720), "{name}");
+        // The paper fills a good part of the picture (light pixels).
+        let light = picture
+            .chunks(4)
+            .filter(|p| p[0] > 200 && p[1] > 200)
+            .count();
+        let share = light as f64 / f64::from(w * h);
+        println!("{name}: picture {:.1} % light", 100.0 * share);
+        assert!((0.1..0.9).contains(&share), "{name}: {share}");
+    }
+}
+
 #[test]
 fn list_names_every_built_in_scene() {
     let out = folio(&scratch("list"), &["list"]);
     assert!(out.status.success());
     let listed = text(&out.stdout);
-    for name in SCENES {
+    for name in SCENES.iter().chain(&TEAR_SCENES) {
         assert!(
             listed.lines().any(|l| l.starts_with(name)),
             "{name} not listed"
@@ -223,7 +331,10 @@ fn check_accepts_the_shipped_scenes_and_the_documented_examples() {
         std::fs::write(&file, scene).unwrap();
         files.push(file.display().to_string());
     }
-    assert!(files.len() >= SCENES.len() + 2, "{files:?}");
+    assert!(
+        files.len() >= SCENES.len() + TEAR_SCENES.len() + 2,
+        "{files:?}"
+    );
     let args: Vec<&str> = core::iter::once("check")
         .chain(files.iter().map(String::as_str))
         .collect();
@@ -237,7 +348,9 @@ fn malformed_scenes_are_refused_at_their_line_and_column() {
     let good = "name = \"x\"\nmodel = \"cone\"\ninput = { fixture = \"page-turn-touch\" }\n";
     let dog = "name = \"x\"\nmodel = \"dog\"\ninput = { fixture = \"page-turn\" }\n";
     let events = "name = \"x\"\nmodel = \"cone\"\n[[input.events]]\nframe = 10\ngrab = [11.0, 3.0]\n[[input.events]]\nframe = 20\n";
-    let cases: [(&str, String, &str); 22] = [
+    // A sheet with one hand; line 4 is the hand's fingers, line 5 its moves.
+    let sheet = "name = \"x\"\nmodel = \"sheet\"\n[[input.hands]]\nfingers = [[4.5, 0.0]]\nmoves = [{ start = 0.0, end = 1.0, velocity = [-0.3, 0.0, 0.0] }]\n";
+    let cases: [(&str, String, &str); 36] = [
         ("unknown key", format!("{good}colour = 3\n"), "line 4, column 1"),
         ("unknown model", good.replace("\"cone\"", "\"paper\""), "line 2, column 9"),
         ("syntax", format!("{good}frames = \n"), "line 4"),
@@ -270,7 +383,7 @@ fn malformed_scenes_are_refused_at_their_line_and_column() {
             "line 1, column 12",
         ),
         (
-            "tearing is not there yet",
+            "tearing on the book",
             format!("effects = [\"tearing\"]\n{dog}"),
             "line 1, column 12",
         ),
@@ -307,6 +420,44 @@ fn malformed_scenes_are_refused_at_their_line_and_column() {
             "frames going back",
             events.replace("frame = 20", "frame = 5\nrelease = true"),
             "line 6, column 1",
+        ),
+        ("an unknown sheet key", format!("{sheet}[sheet]\ncolour = 3\n"), "line 7, column 1"),
+        ("a sheet without hands", "name = \"x\"\nmodel = \"sheet\"\ninput = {}\n".into(), "line 3, column 9"),
+        (
+            "a sheet driven by a fixture",
+            sheet.replace("[[input.hands]]", "[input]\nfixture = \"page-turn-touch\"\n[[input.hands]]"),
+            "line 4, column 11",
+        ),
+        ("hands on a cone", sheet.replace("\"sheet\"", "\"cone\""), "line 3, column 1"),
+        ("a sheet on a book", format!("{dog}[sheet]\nwidth = 3.0\n"), "line 4, column 1"),
+        ("a finger off the sheet", sheet.replace("4.5, 0.0", "14.5, 0.0"), "line 4, column 12"),
+        (
+            "two fingers on one point",
+            sheet.replace("[[4.5, 0.0]]", "[[4.5, 0.0], [4.5, 0.01]]"),
+            "line 4, column 24",
+        ),
+        ("a move ending before it starts", sheet.replace("end = 1.0", "end = -1.0"), "line 5, column 31"),
+        ("a move going nowhere", sheet.replace(", velocity = [-0.3, 0.0, 0.0]", ""), "line 5, column 10"),
+        (
+            "an endless move without frames",
+            sheet.replace("end = 1.0, ", ""),
+            "line 5, column 10",
+        ),
+        ("a sheet with no quads", format!("{sheet}[sheet]\nnx = 0\n"), "line 7, column 6"),
+        (
+            "a negative thickness",
+            format!("{sheet}[tearing]\nthickness = -0.01\n"),
+            "line 7, column 13",
+        ),
+        (
+            "a notch off the grid",
+            format!("{sheet}[sheet]\nnotch = [[6.0, 0.0], [6.2, 1.5]]\n"),
+            "line 7, column 22",
+        ),
+        (
+            "a notch inside the sheet",
+            format!("{sheet}[sheet]\nnotch = [[6.0, 1.5], [6.0, 3.0]]\n"),
+            "line 7, column 10",
         ),
     ];
     for (what, scene, place) in cases {

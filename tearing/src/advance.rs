@@ -68,6 +68,27 @@ pub fn advance<T: Real>(
             cut: None,
         });
     }
+    // A split is two edits (the new vertex, then the cut); the second may refuse after the
+    // first took: put the sheet back as it was.
+    let backup = mesh.clone();
+    let result = split(mesh, p, t, length, snap, origin, target);
+    if result.is_err() {
+        *mesh = backup;
+    }
+    result
+}
+
+/// The split of [`advance`]: the new tip `q` at `target` (or where the step leaves the wedge
+/// triangle), then the cut of `(p, q)`.
+fn split<T: Real>(
+    mesh: &mut SheetMesh<T>,
+    p: u32,
+    t: [T; 2],
+    length: T,
+    snap: T,
+    origin: [T; 2],
+    target: [T; 2],
+) -> Result<Advance, SheetError> {
     let (h, exit) = wedge(mesh, p, t).ok_or(SheetError::OutsideSheet)?;
     let q = if length < exit * (T::ONE - snap) {
         let tri = h as usize / 3;

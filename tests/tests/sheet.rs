@@ -1169,7 +1169,7 @@ fn a_flat_sheet_is_one_flat_region() {
         &mut m,
         moved(|p| [p[0], p[1], 0.0], q, DVec3::new(1.0, -2.0, 0.5)),
     );
-    let layer = ConeLayer::of(&m, &settings);
+    let mut layer = ConeLayer::of(&m, &settings);
     assert_eq!(layer.regions.len(), 96);
     assert!(layer.regions.iter().all(|&r| r == Region::Flat));
     assert!(layer.curvature.iter().all(|k| k.abs() < 1e-12));

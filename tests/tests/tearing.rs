@@ -1,8 +1,9 @@
 //! The tearing validations of seed `002_…` Sec. 7 on [`TearingSheet`]: the straight tear of
 //! symmetric pulls (Fig. 14), the hyperbola of asymmetric pulls (Fig. 2, 15, O'Keefe), the
-//! zigzag of alternating hands (Fig. 16), the start points (Fig. 12-15), determinism, a
-//! valid manifold and finite values after every frame, and bad input. Run with
-//! `--nocapture` for the measured figures.
+//! zigzag of alternating hands (Fig. 16), the start points (Fig. 12-15: flattening a bent
+//! sheet tears near a finger, twisting at a junction point), the branch of changed finger
+//! positions (Fig. 17), determinism, a valid manifold and finite values after every frame,
+//! and bad input. Run with `--nocapture` for the measured figures.
 
 use folio_geometry::SheetMesh;
 use folio_solvers::sheet::{FrameReport, SheetSettings, TearingSheet, TearingSheetError};
@@ -401,4 +402,349 @@ fn violent_pulls_stay_finite() {
         sheet.propagations().len(),
         sheet.mesh().triangle_count()
     );
+}
+
+/// Pattern point `(u, v)` of the sheet bent about the $v$ axis by two hands (seed Fig. 12,
+/// "bent into a locally cylindrical shape"): the strips $u < 1.5$ and $u > 10.5$ are flat
+/// (held by the hands) and inclined by $\mp\varphi$, the part between is a circular arc of
+/// turning $2\varphi$ (length 9, radius $9 / (2\varphi)$), rising toward $+z$ on both sides.
+/// The map is an isometry of the pattern (a cylinder), so the bent sheet is at rest.
+fn bent(u: f64, v: f64, phi: f64) -> DVec3 {
+    let (a, b) = (1.5, 10.5);
+    let c = 0.5 * (a + b);
+    let r = (b - a) / (2.0 * phi);
+    let s = u.clamp(a, b);
+    let psi = (s - c) / r;
+    let on_arc = DVec3::new(c + r * psi.sin(), v, r - r * psi.cos());
+    let tangent = DVec3::new(psi.cos(), 0.0, psi.sin());
+    on_arc + tangent * (u - s)
+}
+
+/// The hands of the flattening experiment (seed Fig. 12): each hand is two fingers on the
+/// line where its flat strip meets the curved part ($u = 1.5$ and $u = 10.5$), a thumb 0.75
+/// from the bottom border and a forefinger at $v = 4.5$.
+const FLATTENING_FINGERS: [[f64; 2]; 4] = [[1.5, 0.75], [1.5, 4.5], [10.5, 0.75], [10.5, 4.5]];
+
+/// Plays the flattening experiment for at most `frames` frames, until the first
+/// propagation: the sheet starts bent (`bent` at $\varphi = 0.5$ rad) and held by
+/// [`FLATTENING_FINGERS`]; after 0.5 s of holding still, each hand turns in its own plane at
+/// `omega` rad/s about the midpoint of its two fingers, the two hands in opposite senses so
+/// that the thumbs move apart along the bottom border and the forefingers come together.
+/// Returns the frames played.
+fn flatten(sheet: &mut TearingSheet<f64>, omega: f64, frames: usize) -> usize {
+    let phi: f64 = 0.5;
+    let fingers: Vec<usize> = FLATTENING_FINGERS
+        .iter()
+        .map(|&p| sheet.grab(p).expect("grab"))
+        .collect();
+    let h = sheet.settings().time_step;
+    for frame in 0..frames {
+        let t = (frame + 1) as f64 * h;
+        let angle = omega * (t - 0.5).max(0.0);
+        for (&f, &[u, v]) in fingers.iter().zip(&FLATTENING_FINGERS) {
+            // The hand's plane is spanned by the along-u tangent of its flat strip and +v;
+            // turning moves the thumb (below the midpoint) outward, away from the other hand.
+            let (along, outward) = if u < 6.0 {
+                (DVec3::new(phi.cos(), 0.0, -phi.sin()), -1.0)
+            } else {
+                (DVec3::new(phi.cos(), 0.0, phi.sin()), 1.0)
+            };
+            let mid = 0.5 * (FLATTENING_FINGERS[0][1] + FLATTENING_FINGERS[1][1]);
+            let d = v - mid;
+            let target = bent(u, mid, phi)
+                + DVec3::Y * (d * angle.cos())
+                + along * (-outward * d * angle.sin());
+            sheet.move_finger(f, target).expect("move");
+        }
+        let report = sheet.step();
+        assert!(report.status.advanced(), "frame {frame}: {report:?}");
+        assert_sound(sheet, frame);
+        if !sheet.propagations().is_empty() {
+            return frame + 1;
+        }
+    }
+    frames
+}
+
+/// Seed Fig. 12 and Sec. 7.1 (a), "the tear begins at a finger position": a sheet bent into a
+/// cylinder by two hands, whose hands then turn to flatten its bottom border, tears near a
+/// finger, at the bottom border where a hand's flat part meets the curved part. The sheet
+/// has no notch, so neither a notch nor a tear tip can start it.
+///
+/// Asserted: the first propagation is of kind [`Kind::Finger`] (the boundary vertex nearest to
+/// a finger), it starts on the flattened bottom border at most 1.0 (two thirds of a mesh cell)
+/// from a finger, and it runs into the sheet (its first step makes at least 30° with the
+/// border), not along it. Control: the same sheet held bent without turning the hands for as
+/// long does not tear, so it is the flattening that tears it.
+#[test]
+fn flattening_tears_near_a_finger() {
+    let frames = 240;
+    let sheet_of = || {
+        let mut mesh = SheetMesh::rectangle(12.0, 9.0, 8, 6).expect("mesh");
+        let pattern = mesh.pattern().to_vec();
+        for (x, p) in mesh.positions_mut().iter_mut().zip(&pattern) {
+            *x = bent(p[0], p[1], 0.5);
+        }
+        TearingSheet::with_mesh(mesh, SheetSettings::default()).expect("sheet")
+    };
+
+    let mut held = sheet_of();
+    flatten(&mut held, 0.0, frames);
+    assert!(
+        held.propagations().is_empty(),
+        "the sheet tore without being flattened: {:?}",
+        held.propagations()[0]
+    );
+
+    let mut sheet = sheet_of();
+    let played = flatten(&mut sheet, 0.4, frames);
+    let first = *sheet
+        .propagations()
+        .first()
+        .unwrap_or_else(|| panic!("no tear in {frames} frames of flattening"));
+    let (finger, distance) = FLATTENING_FINGERS
+        .iter()
+        .map(|&f| (f, dist(f, first.from)))
+        .fold((FLATTENING_FINGERS[0], f64::INFINITY), |a, b| {
+            if b.1 < a.1 { b } else { a }
+        });
+    let step = [first.to[0] - first.from[0], first.to[1] - first.from[1]];
+    let across = step[1].atan2(step[0].abs()).to_degrees();
+    println!(
+        "flattening: the first propagation at frame {played} (hands turned by {:.3} rad) is {:?} \
+         from ({:.3}, {:.3}) to ({:.3}, {:.3}): {distance:.3} from the finger at {finger:?}, \
+         {across:.1} deg from the border; E_r {:.3e}, E_f {:.3e}",
+        0.4 * (played as f64 * sheet.settings().time_step - 0.5),
+        first.kind,
+        first.from[0],
+        first.from[1],
+        first.to[0],
+        first.to[1],
+        first.release_rate,
+        first.fracture_energy
+    );
+    assert_eq!(first.kind, Kind::Finger, "{first:?}");
+    assert!(
+        first.from[1].abs() <= 1e-9,
+        "not on the bottom border: {first:?}"
+    );
+    assert!(distance <= 1.0, "{distance} from the nearest finger");
+    assert!(
+        across >= 30.0,
+        "the tear runs along the border: {across} deg"
+    );
+}
+
+/// Distance from `p` to the polyline `path`.
+fn distance_to_path(p: [f64; 2], path: &[[f64; 2]]) -> f64 {
+    path.windows(2)
+        .map(|w| {
+            let e = [w[1][0] - w[0][0], w[1][1] - w[0][1]];
+            let len2 = e[0] * e[0] + e[1] * e[1];
+            let s = if len2 > 0.0 {
+                (((p[0] - w[0][0]) * e[0] + (p[1] - w[0][1]) * e[1]) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            dist(p, [w[0][0] + s * e[0], w[0][1] + s * e[1]])
+        })
+        .fold(dist(p, path[0]), f64::min)
+}
+
+fn path_length(path: &[[f64; 2]]) -> f64 {
+    path.windows(2).map(|w| dist(w[0], w[1])).sum()
+}
+
+/// Seed Fig. 17 and Sec. 5.3 ("the tear could thus even branch"): fingers that change
+/// position during the deformation branch the tear. First the notch is torn straight up by
+/// fingers pulling its lips apart (as in Fig. 14) to a length of 3; then both fingers let go
+/// and grab the left half of the sheet again, one below and one above the middle of the tear
+/// ($(4.5, 1.5)$ and $(4.5, 4.5)$), and pull apart along the tear ($\mp v$ at 0.4 / s): the
+/// left lip is now stretched along its length, and a new tear starts on it and runs sideways.
+///
+/// Asserted: no branch before the re-grab; after it a tear with a parent that starts on the
+/// parent's path at least 0.5 from the parent's tip (a side branch, not a fork of the tip),
+/// both paths of nonzero length, the branch at least 45° from the parent's direction, and
+/// their own alpha masks: they differ, and on the branch, beyond the reach of the parent's
+/// cut, the branch's masks are cut (one of them transparent) where the parent's are both
+/// opaque.
+/// The mesh is valid and every value finite after every frame.
+#[test]
+fn changed_finger_positions_branch_the_tear() {
+    use folio_tearing::Side;
+    use folio_tearing::texture::{OPAQUE, TRANSPARENT};
+
+    let mut sheet = notched(SheetSettings::default());
+    let pulls = [
+        grab(&mut sheet, [4.5, 0.0], DVec3::new(-0.3, 0.0, 0.0)),
+        grab(&mut sheet, [7.5, 0.0], DVec3::new(0.3, 0.0, 0.0)),
+    ];
+    let first = play(&mut sheet, &pulls, 400, 3.0);
+    assert!(
+        tear_length(&sheet) >= 3.0,
+        "phase 1: {}",
+        tear_length(&sheet)
+    );
+    assert!(
+        sheet.tears().tears().iter().all(|t| t.parent.is_none()),
+        "a branch before the fingers moved"
+    );
+    let before = sheet.propagations().len();
+
+    sheet.release(1).expect("release");
+    sheet.release(0).expect("release");
+    let pulls = [
+        grab(&mut sheet, [4.5, 1.5], DVec3::new(0.0, -0.4, 0.0)),
+        grab(&mut sheet, [4.5, 4.5], DVec3::new(0.0, 0.4, 0.0)),
+    ];
+    let h = sheet.settings().time_step;
+    let side_branch = |sheet: &TearingSheet<f64>| {
+        let tears = sheet.tears().tears();
+        tears.iter().position(|t| {
+            t.parent.is_some_and(|p| {
+                let parent = &tears[p].path;
+                distance_to_path(t.path[0], parent) <= 1e-9
+                    && dist(t.path[0], *parent.last().unwrap()) >= 0.5
+                    && path_length(&t.path) >= 1.0
+            })
+        })
+    };
+    let mut frames = 0;
+    let mut branched = None;
+    while frames < 480 && side_branch(&sheet).is_none() {
+        let t = (frames + 1) as f64 * h;
+        for p in &pulls {
+            sheet
+                .move_finger(p.finger, p.start + p.velocity * t)
+                .expect("move");
+        }
+        let report = sheet.step();
+        assert!(report.status.advanced(), "frame {frames}: {report:?}");
+        assert_sound(&sheet, first.len() + frames);
+        frames += 1;
+        if branched.is_none() && sheet.tears().tears().iter().any(|t| t.parent.is_some()) {
+            branched = Some(frames);
+        }
+    }
+    let tears = sheet.tears().tears();
+    for (i, t) in tears.iter().enumerate() {
+        println!(
+            "tear {i}: parent {:?}, length {:.3}, from ({:.3}, {:.3}) to ({:.3}, {:.3})",
+            t.parent,
+            path_length(&t.path),
+            t.path[0][0],
+            t.path[0][1],
+            t.path.last().unwrap()[0],
+            t.path.last().unwrap()[1]
+        );
+    }
+    for p in &sheet.propagations()[before..] {
+        println!(
+            "  after the re-grab: tear {} {:?} {:?} ({:.3}, {:.3}) -> ({:.3}, {:.3})",
+            p.tear, p.kind, p.edit, p.from[0], p.from[1], p.to[0], p.to[1]
+        );
+    }
+    let b = side_branch(&sheet)
+        .unwrap_or_else(|| panic!("no side branch in {frames} frames after the re-grab"));
+    let (branch, parent) = (&tears[b], &tears[tears[b].parent.unwrap()]);
+    let chord = |path: &[[f64; 2]]| {
+        let (a, z) = (path[0], *path.last().unwrap());
+        let l = dist(a, z);
+        [(z[0] - a[0]) / l, (z[1] - a[1]) / l]
+    };
+    let (cb, cp) = (chord(&branch.path), chord(&parent.path));
+    let turn = (cb[0] * cp[0] + cb[1] * cp[1])
+        .clamp(-1.0, 1.0)
+        .acos()
+        .to_degrees();
+    println!(
+        "branch {b} starts at ({:.3}, {:.3}), {:.3} from the parent's tip, {:.3} long, \
+         {turn:.1} deg from the parent; the first branch {branched:?} frames and this one \
+         {frames} frames after the re-grab",
+        branch.path[0][0],
+        branch.path[0][1],
+        dist(branch.path[0], *parent.path.last().unwrap()),
+        path_length(&branch.path)
+    );
+    assert!(path_length(&parent.path) > 0.0 && path_length(&branch.path) > 0.0);
+    assert!(turn >= 45.0, "the branch turns by {turn} deg only");
+    assert_ne!(branch.alpha, parent.alpha, "one alpha pair for both");
+    // The middle of the branch segment farthest from the parent: the parent's cut reaches
+    // $4\sigma$ plus two pixels to each side of its path (the band of `AlphaPair::cut`).
+    let (mid, off) = branch
+        .path
+        .windows(2)
+        .map(|w| {
+            let m = [0.5 * (w[0][0] + w[1][0]), 0.5 * (w[0][1] + w[1][1])];
+            (m, distance_to_path(m, &parent.path))
+        })
+        .fold(
+            ([0.0; 2], f64::NEG_INFINITY),
+            |a, b| if b.1 > a.1 { b } else { a },
+        );
+    let pixel_size = branch.alpha.raster().pixel_size();
+    let band = 4.0 * sheet.tears().settings().detail.sigma + 2.0 * pixel_size[0].max(pixel_size[1]);
+    assert!(
+        off > band,
+        "the branch stays within the parent's cut: {off} <= {band}"
+    );
+    let pixel = branch.alpha.raster().pixel_of(mid);
+    let alpha = |pair: &folio_tearing::AlphaPair, side| pair.alpha(side, pixel).unwrap();
+    assert_eq!(
+        alpha(&branch.alpha, Side::Left).min(alpha(&branch.alpha, Side::Right)),
+        TRANSPARENT,
+        "the branch's masks are not cut at {mid:?}"
+    );
+    assert_eq!(
+        (
+            alpha(&parent.alpha, Side::Left),
+            alpha(&parent.alpha, Side::Right)
+        ),
+        (OPAQUE, OPAQUE),
+        "the parent's masks are cut at {mid:?}, on the branch"
+    );
+}
+
+/// `tearing::advance` keeps its promise "the mesh is unchanged on error" for any request:
+/// random tips (boundary vertices), directions, lengths, slides or splits on sheets torn at
+/// random. Every refused advance leaves pattern, positions and triangles as they were, and
+/// every accepted one leaves a valid manifold. (A split once inserted its new vertex and then
+/// failed to cut, leaving the sheet a vertex larger than the solver's state.)
+#[test]
+fn refused_advances_leave_the_sheet_unchanged() {
+    use folio_tearing::advance::advance;
+    let mut rng = folio_tests::Rng::new(0x7ea2);
+    let (mut refused, mut accepted) = (0, 0);
+    for _sheet in 0..400 {
+        let mut mesh = SheetMesh::<f64>::rectangle(12.0, 9.0, 8, 6).expect("mesh");
+        for _ in 0..60 {
+            let boundary: Vec<u32> = (0..mesh.vertex_count() as u32)
+                .filter(|&v| mesh.is_boundary(v))
+                .collect();
+            let p = boundary[(rng.next_u64() % boundary.len() as u64) as usize];
+            let angle = rng.uniform(0.0, core::f64::consts::TAU);
+            let t = [angle.cos(), angle.sin()];
+            let length = rng.uniform(0.01, 2.0).powi(2);
+            let straight = rng.next_u64() % 2 == 0;
+            let before = (
+                mesh.pattern().to_vec(),
+                mesh.positions().to_vec(),
+                mesh.triangles().to_vec(),
+            );
+            match advance(&mut mesh, p, t, length, straight, 0.12) {
+                Ok(_) => {
+                    accepted += 1;
+                    mesh.check().expect("a valid sheet after an advance");
+                }
+                Err(_) => {
+                    refused += 1;
+                    assert_eq!(mesh.pattern(), &before.0[..], "pattern changed");
+                    assert_eq!(mesh.positions(), &before.1[..], "positions changed");
+                    assert_eq!(mesh.triangles(), &before.2[..], "triangles changed");
+                }
+            }
+        }
+    }
+    println!("advances: {accepted} accepted, {refused} refused");
+    assert!(accepted > 100 && refused > 100, "{accepted} / {refused}");
 }

@@ -31,6 +31,11 @@ pub enum RenderError {
         /// The axis (0 = X, 1 = Y, 2 = Z).
         axis: usize,
     },
+    /// The eye or light direction is not finite or is zero.
+    Direction {
+        /// `"eye"` or `"light"`.
+        field: &'static str,
+    },
 }
 
 impl fmt::Display for RenderError {
@@ -58,6 +63,9 @@ impl fmt::Display for RenderError {
                 f,
                 "bounds on axis {axis} must be finite with minimum <= maximum"
             ),
+            Self::Direction { field } => {
+                write!(f, "the {field} direction must be finite and not zero")
+            }
         }
     }
 }

@@ -186,6 +186,12 @@ pub fn tone_map(radiance: f32, exposure: f32) -> f32 {
     } else {
         0.0
     };
+    srgb(linear)
+}
+
+/// The sRGB transfer function of a linear value, clamped to $[0, 1]$ (NaN gives 0).
+#[must_use]
+pub fn srgb(linear: f32) -> f32 {
     let linear = if linear.is_finite() {
         linear.clamp(0.0, 1.0)
     } else {

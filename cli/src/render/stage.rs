@@ -12,14 +12,8 @@ use super::shadow::{ShadowMap, corners};
 use super::texture::{PAGE_EDGES, Side, TABLE, page_albedo, surface_albedo};
 use super::vector::{V3, add, dot, length, normalize_or, scale, sub};
 
-/// Direction from the box's centre to the eye (unnormalized): above, in front (+Z, beyond
-/// the page's foot) and a little to the right, so both page blocks and a turning page
-/// standing over the spine are seen.
-const EYE_DIRECTION: V3 = [0.25, 1.0, 0.8];
 /// Eye distance from the box's centre, in box diagonals (sets the perspective's strength).
 const EYE_DISTANCE: f32 = 1.4;
-/// Direction from the box's centre to the light (unnormalized): above, left, in front.
-const LIGHT_DIRECTION: V3 = [-0.55, 1.0, 0.45];
 /// Light distance from the box's centre, in box diagonals.
 const LIGHT_DISTANCE: f32 = 1.2;
 /// Irradiance (normal incidence) of the light at the box's centre.
@@ -105,28 +99,30 @@ pub struct Stage {
 
 impl Stage {
     /// The stage for tiles of `tile` pixels rendered at `supersample` x `supersample`
-    /// samples per pixel, framing `bounds` (finite, min <= max).
+    /// samples per pixel, framing `bounds` (finite, min <= max), seen from the direction
+    /// `eye` and lit from the direction `light` (from the box's centre, unnormalized;
+    /// [`super::SheetSettings`]).
     #[must_use]
-    pub fn new(bounds: [[f32; 3]; 2], tile: [usize; 2], supersample: usize, paper: Paper) -> Self {
+    pub fn new(
+        bounds: [[f32; 3]; 2],
+        tile: [usize; 2],
+        supersample: usize,
+        paper: Paper,
+        [eye, light]: [V3; 2],
+    ) -> Self {
         let [lo, hi] = bounds;
         let centre = [0, 1, 2].map(|a| 0.5 * (lo[a] + hi[a]));
         let diagonal = length(sub(hi, lo)).max(1e-3);
         let size = [tile[0] * supersample, tile[1] * supersample];
         let eye = add(
             centre,
-            scale(
-                normalize_or(EYE_DIRECTION, [0.0, 1.0, 0.0]),
-                EYE_DISTANCE * diagonal,
-            ),
+            scale(normalize_or(eye, [0.0, 1.0, 0.0]), EYE_DISTANCE * diagonal),
         );
         let camera = Camera::framing(eye, bounds, size, MARGIN);
         let light_distance = LIGHT_DISTANCE * diagonal;
         let light = add(
             centre,
-            scale(
-                normalize_or(LIGHT_DIRECTION, [0.0, 1.0, 0.0]),
-                light_distance,
-            ),
+            scale(normalize_or(light, [0.0, 1.0, 0.0]), light_distance),
         );
         let y = lo[1] - 1e-4 * diagonal;
         let r = TABLE_EXTENT * diagonal;
@@ -146,8 +142,15 @@ impl Stage {
     }
 
     /// Renders `mesh` into a tile; pages are `thickness` thick (page units) in the
-    /// translucency term.
-    pub fn render(&mut self, mesh: &TriMesh, thickness: f32) -> TileImage {
+    /// translucency term. An alpha test cuts paper out: a sample of triangle `t` of `mesh`
+    /// at texture coordinates `uv` is drawn only where `keep(t, uv)` holds (the table or
+    /// the paper behind shows through). Shadows ignore the test.
+    pub fn render(
+        &mut self,
+        mesh: &TriMesh,
+        thickness: f32,
+        keep: impl Fn(usize, [f32; 2]) -> bool,
+    ) -> TileImage {
         let (w, h) = (self.camera.width, self.camera.height);
         self.samples.clear();
         self.samples.resize(w * h, Sample::EMPTY);
@@ -164,10 +167,12 @@ impl Stage {
                 store(samples, w, Material::Table, &f);
             });
         }
-        for (t, &surface) in mesh.triangles.iter().zip(&mesh.surfaces) {
+        for (k, (t, &surface)) in mesh.triangles.iter().zip(&mesh.surfaces).enumerate() {
             if let Some(c) = corners(&camera, mesh, t) {
                 rasterize(&camera, &c, true, |f| {
-                    store(samples, w, Material::Mesh(surface), &f);
+                    if keep(k, [f.attributes[6], f.attributes[7]]) {
+                        store(samples, w, Material::Mesh(surface), &f);
+                    }
                 });
             }
         }

@@ -101,6 +101,10 @@ pub struct ConeLayer<T: Real> {
     shape: Vec<[T; 3]>,
     /// [`SheetMesh::topology_version`] of the mesh at the last update.
     topology: Option<u64>,
+    /// The remesh's working copy of the rulings (the flipped pairs take their mean ruling).
+    remesh_rulings: Vec<[T; 2]>,
+    /// The remesh's flags: triangle `t` was curved at the last update.
+    remesh_curved: Vec<bool>,
 }
 
 impl<T: Real> ConeLayer<T> {
@@ -184,6 +188,9 @@ impl<T: Real> ConeLayer<T> {
                 });
         }
         self.junctions.clear();
+        // Room for every vertex as a junction, so that more junctions in a later frame do not
+        // grow the buffer.
+        self.junctions.reserve(mesh.vertex_count());
         for v in 0..mesh.vertex_count() as u32 {
             if !mesh.is_boundary(v) {
                 continue;
@@ -201,13 +208,22 @@ impl<T: Real> ConeLayer<T> {
     /// nothing when `mesh` is not the mesh of the last [`ConeLayer::update`] (its topology
     /// changed since). Re-estimates nothing itself: call [`ConeLayer::update`] after it when
     /// flips happened.
-    pub fn remesh(&self, mesh: &mut SheetMesh<T>, settings: &ConeSettings<T>) -> usize {
+    ///
+    /// Works in buffers of the layer: no allocation once they have grown to the mesh's size,
+    /// except in the flips themselves (a topology edit). A flip whose new triangles
+    /// $(c, a, d)$, $(d, b, c)$ would be clockwise or slivers in the pattern is skipped
+    /// before the mesh is asked (the mesh would refuse it the same way, after copying itself).
+    pub fn remesh(&mut self, mesh: &mut SheetMesh<T>, settings: &ConeSettings<T>) -> usize {
         let n = mesh.triangle_count();
         if self.topology != Some(mesh.topology_version()) || self.rulings.len() != n {
             return 0;
         }
-        let mut rulings = self.rulings.clone();
-        let curved: Vec<bool> = self.regions.iter().map(|&r| r != Region::Flat).collect();
+        let rulings = &mut self.remesh_rulings;
+        rulings.clear();
+        rulings.extend_from_slice(&self.rulings);
+        let curved = &mut self.remesh_curved;
+        curved.clear();
+        curved.extend(self.regions.iter().map(|&r| r != Region::Flat));
         let mut flips = 0;
         for _ in 0..MAX_REMESH_PASSES {
             let mut pass = 0;
@@ -233,7 +249,11 @@ impl<T: Real> ConeLayer<T> {
                 let p = |i: u32| mesh.pattern()[i as usize];
                 let now = abs_cos(ruling, p(a), p(b));
                 let flipped = abs_cos(ruling, p(c), p(d));
-                if flipped > now + settings.flip_margin && mesh.flip_edge(h).is_ok() {
+                if flipped > now + settings.flip_margin
+                    && mesh.triangle_ok([p(c), p(a), p(d)])
+                    && mesh.triangle_ok([p(d), p(b), p(c)])
+                    && mesh.flip_edge(h).is_ok()
+                {
                     // The two new triangles (same indices) get the mean ruling of the pair
                     // (|r1 + s r2| >= 1 since the two are unit and s r2 . r1 >= 0).
                     let len = math::sqrt(ruling[0] * ruling[0] + ruling[1] * ruling[1]);

@@ -336,7 +336,25 @@ impl<T: Real> TearingSheet<T> {
                 self.state.v[f.vertex as usize] = T::Vec3::ZERO;
             }
         }
-        let status = match self.solver.step(&self.model, &mut self.state) {
+        // A model the kernels refused at the last edit is not the mesh's: try again, and
+        // take no step on a stale one (a failed step, the mesh kept as it is).
+        if self.topology_seen != self.mesh.topology_version()
+            && self
+                .model
+                .rebuild(&self.mesh, &self.held, &self.settings)
+                .is_ok()
+        {
+            self.topology_seen = self.mesh.topology_version();
+        }
+        let stale = self.topology_seen != self.mesh.topology_version();
+        let outcome = if stale {
+            Err(())
+        } else {
+            self.solver
+                .step(&self.model, &mut self.state)
+                .map_err(|_| ())
+        };
+        let status = match outcome {
             Ok(r) => {
                 if r.analysed {
                     report.analyses += 1;

@@ -1,0 +1,238 @@
+//! Running a sheet scene (`model = "sheet"`, seed `002_…`): before every frame the hands
+//! place their fingers ([`folio::hands`]), the sheet steps (physics, cone remesh, tearing:
+//! `folio_solvers::sheet::TearingSheet::step`), and the frame is measured; the run ends in
+//! a [`Report`] whose summary gives the tears' lengths and whose [`TearingLog`] lists every
+//! propagation and tear path.
+//!
+//! Edge stretch is $\lvert \ell / \ell_0 - 1 \rvert$ over the sheet's edges, $\ell$ in 3D
+//! and $\ell_0$ in the pattern (every edge once): paper barely stretches, and a tear relieves
+//! it.
+
+use std::time::Instant;
+
+use folio_geometry::SheetMesh;
+use folio_geometry::sheet::NONE;
+use folio_tearing::{Edit, Kind, Propagation};
+use serde::Serialize;
+
+use folio::scene::Scene;
+
+use crate::run::{FrameRecord, Report, RunError, Shape, fail, summarize};
+
+/// One propagation of a tear (`report.json`'s `tearing.propagations`).
+#[derive(Clone, Debug, Serialize)]
+pub struct PropagationRecord {
+    /// The frame it happened in.
+    pub frame: u32,
+    /// The tear (index into `tearing.tears`).
+    pub tear: usize,
+    /// Why its start was a potential tearing point: `tip`, `finger`, `junction`,
+    /// `inward-angle`.
+    pub kind: &'static str,
+    /// The old tip (pattern, sheet units).
+    pub from: [f64; 2],
+    /// The new tip.
+    pub to: [f64; 2],
+    /// The release rate $E_r$ (eq. 6).
+    pub release_rate: f64,
+    /// The fracture energy $E_f$ (eq. 3) it beat.
+    pub fracture_energy: f64,
+    /// The mesh edit: `moved` (the tip slid), `split` (two lips), `separated` (a piece came
+    /// off).
+    pub edit: &'static str,
+}
+
+/// One tear at the end of the run (`report.json`'s `tearing.tears`).
+#[derive(Clone, Debug, Serialize)]
+pub struct TearRecord {
+    /// The tear it branched from.
+    pub parent: Option<usize>,
+    /// Still open (it has a tip; a tear that reached the border has none).
+    pub open: bool,
+    /// Length of its path in the pattern (sheet units).
+    pub length: f64,
+    /// Its path in the pattern from the start to the tip.
+    pub path: Vec<[f64; 2]>,
+}
+
+/// The tears' log of a sheet run.
+#[derive(Clone, Debug, Serialize)]
+pub struct TearingLog {
+    /// The alpha textures' size in pixels (width, height).
+    pub texture_size: [u32; 2],
+    /// Every propagation in order.
+    pub propagations: Vec<PropagationRecord>,
+    /// Every tear.
+    pub tears: Vec<TearRecord>,
+}
+
+/// The name of a potential tearing point's kind in reports and scenes.
+#[must_use]
+pub fn kind_name(kind: Kind) -> &'static str {
+    match kind {
+        Kind::Tip => "tip",
+        Kind::Finger => "finger",
+        Kind::Junction => "junction",
+        Kind::InwardAngle => "inward-angle",
+    }
+}
+
+fn edit_name(edit: Edit) -> &'static str {
+    match edit {
+        Edit::Moved => "moved",
+        Edit::Split => "split",
+        Edit::Separated => "separated",
+    }
+}
+
+fn length(path: &[[f64; 2]]) -> f64 {
+    path.windows(2)
+        .map(|w| ((w[1][0] - w[0][0]).powi(2) + (w[1][1] - w[0][1]).powi(2)).sqrt())
+        .sum()
+}
+
+/// The largest and the RMS edge stretch of `mesh` (module docs); zeros without an edge.
+fn edge_stretch(mesh: &SheetMesh<f64>) -> (f64, f64) {
+    let (mut max, mut sum, mut count) = (0.0f64, 0.0f64, 0usize);
+    for (t, tri) in mesh.triangles().iter().enumerate() {
+        for k in 0..3 {
+            let h = (3 * t + k) as u32;
+            let twin = mesh.twin(h);
+            if twin != NONE && twin < h {
+                continue;
+            }
+            let (a, b) = (tri[k] as usize, tri[(k + 1) % 3] as usize);
+            let (p, q) = (mesh.pattern()[a], mesh.pattern()[b]);
+            let rest = ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2)).sqrt();
+            if rest <= 0.0 {
+                continue;
+            }
+            let now = (mesh.positions()[b] - mesh.positions()[a]).length();
+            let stretch = (now / rest - 1.0).abs();
+            max = max.max(stretch);
+            sum += stretch * stretch;
+            count += 1;
+        }
+    }
+    (max, (sum / count.max(1) as f64).sqrt())
+}
+
+fn record(frame: u32, p: &Propagation<f64>) -> PropagationRecord {
+    PropagationRecord {
+        frame,
+        tear: p.tear,
+        kind: kind_name(p.kind),
+        from: p.from,
+        to: p.to,
+        release_rate: p.release_rate,
+        fracture_energy: p.fracture_energy,
+        edit: edit_name(p.edit),
+    }
+}
+
+/// Runs the checked sheet scene `scene`, calling `progress(frame, frames)` and
+/// `observe(frame, frames, shape)` after every frame.
+///
+/// # Errors
+/// A sheet the scene describes but that refuses to start, or a finger target it refuses.
+pub fn run(
+    scene: &Scene,
+    mut progress: impl FnMut(u32, u32),
+    mut observe: impl FnMut(u32, u32, Shape<'_>),
+) -> Result<Report, RunError> {
+    let (mut sheet, mut hands) = folio::sheet::setup(scene).map_err(|e| fail(e.1))?;
+    let n = folio::sheet::frames(scene).map_err(|e| fail(e.1))?;
+    let mut records = Vec::with_capacity(n as usize);
+    let mut propagations = Vec::new();
+    for frame in 0..n {
+        hands
+            .apply(&mut sheet, frame)
+            .map_err(|e| fail(format!("frame {frame}: {e}")))?;
+        let before = sheet.propagations().len();
+        let t = Instant::now();
+        let step = sheet.step();
+        let step_ms = t.elapsed().as_secs_f64() * 1e3;
+        propagations.extend(
+            sheet.propagations()[before..]
+                .iter()
+                .map(|p| record(frame, p)),
+        );
+        let mesh = sheet.mesh();
+        let (max, rmse) = edge_stretch(mesh);
+        let finite = mesh
+            .positions()
+            .iter()
+            .chain(mesh.velocities())
+            .all(|x| x.is_finite());
+        records.push(FrameRecord {
+            frame,
+            step_ms,
+            max_stretch: Some(max),
+            rmse_stretch: Some(rmse),
+            angle_defect: None,
+            dog_residual: None,
+            penetration: None,
+            dofs: None,
+            constraint_rows: None,
+            terms: None,
+            contact_tests: None,
+            snapshot: None,
+            propagations: Some(step.propagations),
+            refused: Some(step.refused),
+            flips: Some(step.flips),
+            triangles: Some(mesh.triangle_count()),
+            status: format!("{:?}", step.status),
+            nonfinite: !finite,
+        });
+        observe(frame, n, Shape::Sheet(&sheet));
+        progress(frame + 1, n);
+    }
+    let tears: Vec<TearRecord> = sheet
+        .tears()
+        .tears()
+        .iter()
+        .map(|t| TearRecord {
+            parent: t.parent,
+            open: t.tip.is_some(),
+            length: length(&t.path),
+            path: t.path.clone(),
+        })
+        .collect();
+    let mut summary = summarize(&records, scene.effect_names(), None);
+    summary.propagations_total = Some(propagations.len());
+    summary.tear_lengths = Some(tears.iter().map(|t| t.length).collect());
+    summary.tear_start = sheet
+        .propagations()
+        .first()
+        .map(|p| kind_name(p.kind).into());
+    let raster = sheet.tears().raster();
+    Ok(Report {
+        scene: scene.name.clone(),
+        model: scene.model.get_ref().name(),
+        summary,
+        frames: records,
+        tearing: Some(TearingLog {
+            texture_size: [raster.width_px(), raster.height_px()],
+            propagations,
+            tears,
+        }),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use folio_kernels::Vec3Ops;
+
+    #[test]
+    fn a_flat_sheet_is_unstretched_and_a_lengthened_one_is() {
+        let mut mesh = SheetMesh::<f64>::rectangle(2.0, 1.0, 2, 1).unwrap();
+        assert_eq!(edge_stretch(&mesh), (0.0, 0.0));
+        for x in mesh.positions_mut() {
+            *x = Vec3Ops::new(1.01 * x.x(), x.y(), x.z());
+        }
+        let (max, rmse) = edge_stretch(&mesh);
+        assert!((max - 0.01).abs() < 1e-12, "{max}");
+        assert!(rmse > 0.0 && rmse < max);
+    }
+}

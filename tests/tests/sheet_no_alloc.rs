@@ -1,0 +1,171 @@
+//! A tearing-free frame of the sheet allocates nothing (DESIGN.md: "setup allocates; stepping
+//! does not"), held by a counting global allocator: [`TearingSheet::step`] with the effect
+//! `tearing` off and `cones` on (physics step, cone-layer update, remesh) on a bent sheet whose
+//! fingers keep moving, after a few warm-up frames.
+// A global allocator is an `unsafe impl`; this test binary is the only place that needs one.
+#![allow(unsafe_code)]
+
+use core::alloc::{GlobalAlloc, Layout};
+use core::cell::Cell;
+use core::f64::consts::PI;
+use std::alloc::System;
+
+use folio_geometry::SheetMesh;
+use folio_geometry::sheet::Region;
+use folio_kernels::{Real, Vec3Ops};
+use folio_solvers::sheet::{SheetEffects, SheetSettings, TearingSheet};
+
+/// Counts the allocations of the thread that makes them: the test harness's own threads
+/// (measured: about one run in thirty sees a few allocations from them while a frame runs)
+/// must not count, and a frame runs on the calling thread.
+struct Counting;
+
+thread_local! {
+    /// Allocations (and reallocations) made by this thread.
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+fn count() {
+    // `try_with`: a thread being torn down has no counter any more and is not counted.
+    let _ = ALLOCATIONS.try_with(|n| n.set(n.get() + 1));
+}
+
+fn allocations() -> usize {
+    ALLOCATIONS.with(Cell::get)
+}
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        count();
+        // SAFETY: forwarded unchanged to the system allocator.
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: `ptr` came from `System.alloc` with this layout.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        count();
+        // SAFETY: as `realloc`'s contract, forwarded.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// Pattern point `(u, v)` of the 12 x 9 sheet bent about the v axis: flat for $u < 3$ and
+/// $u > 9$, a circular arc of turning $2\varphi$ between (a cylinder, developable).
+fn bent(u: f64, v: f64, phi: f64) -> [f64; 3] {
+    let (a, b) = (3.0, 9.0);
+    let c = 0.5 * (a + b);
+    let r = (b - a) / (2.0 * phi);
+    let arc = |s: f64| {
+        let psi = (s - c) / r;
+        [c + r * psi.sin(), v, r - r * psi.cos()]
+    };
+    let s = u.clamp(a, b);
+    let [x, y, z] = arc(s);
+    let (dx, dz) = if u < a {
+        (phi.cos(), -phi.sin())
+    } else {
+        (phi.cos(), phi.sin())
+    };
+    [x + dx * (u - s), y, z + dz * (u - s)]
+}
+
+fn vec3<T: Real>(x: [f64; 3]) -> T::Vec3 {
+    T::Vec3::new(T::from_f64(x[0]), T::from_f64(x[1]), T::from_f64(x[2]))
+}
+
+/// What the counted frames did.
+struct Counted {
+    allocations: usize,
+    frames: usize,
+    flips: u32,
+    analyses: u32,
+    /// Fewest curved triangles of the cone layer over the counted frames.
+    curved: usize,
+}
+
+/// A sheet bent into a cylinder, held by four fingers (two per hand, on the flat parts); the
+/// hands rock the bend between $\varphi = 0.55$ and $0.65$ rad and drift sideways. Tearing is
+/// off, cones on. `warm_up` frames, then the allocations of the next `frames` frames.
+fn allocations_of_tearing_free_frames<T: Real>(warm_up: usize, frames: usize) -> Counted {
+    let settings = SheetSettings::<T> {
+        effects: SheetEffects {
+            tearing: false,
+            cones: true,
+            ..SheetEffects::default()
+        },
+        ..SheetSettings::default()
+    };
+    let mut mesh = SheetMesh::rectangle(settings.width, settings.height, settings.nx, settings.ny)
+        .expect("mesh");
+    let pattern = mesh.pattern().to_vec();
+    for (x, p) in mesh.positions_mut().iter_mut().zip(&pattern) {
+        *x = vec3::<T>(bent(p[0].to_f64(), p[1].to_f64(), 0.6));
+    }
+    let mut sheet = TearingSheet::with_mesh(mesh, settings).expect("sheet");
+    let at = [[1.5, 1.5], [1.5, 7.5], [10.5, 1.5], [10.5, 7.5]];
+    let fingers: Vec<usize> = at
+        .iter()
+        .map(|p| sheet.grab(p.map(T::from_f64)).expect("grab"))
+        .collect();
+    let h = settings.time_step.to_f64();
+    let mut counted = Counted {
+        allocations: 0,
+        frames,
+        flips: 0,
+        analyses: 0,
+        curved: usize::MAX,
+    };
+    for frame in 0..warm_up + frames {
+        let t = (frame + 1) as f64 * h;
+        let phi = 0.6 + 0.05 * (2.0 * PI * t).sin();
+        let drift = 0.2 * t;
+        for (&f, p) in fingers.iter().zip(&at) {
+            let [x, y, z] = bent(p[0], p[1], phi);
+            sheet
+                .move_finger(f, vec3::<T>([x + drift, y, z]))
+                .expect("move");
+        }
+        let before = allocations();
+        let report = sheet.step();
+        let made = allocations() - before;
+        assert!(report.status.advanced(), "frame {frame}: {report:?}");
+        if frame >= warm_up {
+            counted.allocations += made;
+            counted.flips += report.flips;
+            counted.analyses += report.analyses;
+            let curved = sheet
+                .layer()
+                .regions
+                .iter()
+                .filter(|&&r| r != Region::Flat)
+                .count();
+            counted.curved = counted.curved.min(curved);
+        }
+    }
+    assert!(sheet.propagations().is_empty(), "tearing is off");
+    counted
+}
+
+#[test]
+fn tearing_free_frames_do_not_allocate() {
+    for (name, c) in [
+        ("f64", allocations_of_tearing_free_frames::<f64>(10, 60)),
+        ("f32", allocations_of_tearing_free_frames::<f32>(10, 60)),
+    ] {
+        println!(
+            "{name}: {} allocations in {} frames; {} flips, {} analyses; at least {} curved triangles",
+            c.allocations, c.frames, c.flips, c.analyses, c.curved
+        );
+        // The frames must exercise the remesh (curved triangles) without changing the
+        // topology (a flip is a topology change, after which the model is rebuilt: setup).
+        assert!(c.curved > 0, "{name}: the sheet is not bent");
+        assert_eq!(c.flips, 0, "{name}: flips in the counted frames");
+        assert_eq!(c.analyses, 0, "{name}: analyses in the counted frames");
+        assert_eq!(c.allocations, 0, "{name}: a tearing-free frame allocated");
+    }
+}
