@@ -66,6 +66,34 @@ pub struct FrameRecord {
     pub nonfinite: bool,
 }
 
+impl FrameRecord {
+    /// A frame with its time, status and finiteness, and no model-specific figure: each
+    /// model fills in its own with struct update syntax.
+    #[must_use]
+    pub fn new(frame: u32, step_ms: f64, status: String, nonfinite: bool) -> Self {
+        Self {
+            frame,
+            step_ms,
+            max_stretch: None,
+            rmse_stretch: None,
+            angle_defect: None,
+            dog_residual: None,
+            penetration: None,
+            dofs: None,
+            constraint_rows: None,
+            terms: None,
+            contact_tests: None,
+            snapshot: None,
+            propagations: None,
+            refused: None,
+            flips: None,
+            triangles: None,
+            status,
+            nonfinite,
+        }
+    }
+}
+
 /// The summary of a run (`report.json`'s `summary`).
 #[derive(Clone, Debug, Serialize)]
 pub struct Summary {
@@ -271,30 +299,17 @@ pub fn run(
             let step_ms = t.elapsed().as_secs_f64() * 1e3;
             page.sample(grid, &mut samples).map_err(fail)?;
             let m = frame_metrics(grid, page.size(), &samples).map_err(fail)?;
+            let status = match step.status {
+                PageStatus::Moved => "Moved",
+                PageStatus::Unreachable => "Unreachable",
+                PageStatus::Stalled => "Stalled",
+            };
+            let nonfinite = !samples.iter().all(|p| p.is_finite());
             records.push(FrameRecord {
-                frame,
-                step_ms,
                 max_stretch: Some(m.max_stretch),
                 rmse_stretch: Some(m.rmse_stretch),
                 angle_defect: Some(m.max_angle_defect),
-                dog_residual: None,
-                penetration: None,
-                dofs: None,
-                constraint_rows: None,
-                terms: None,
-                contact_tests: None,
-                snapshot: None,
-                propagations: None,
-                refused: None,
-                flips: None,
-                triangles: None,
-                status: match step.status {
-                    PageStatus::Moved => "Moved",
-                    PageStatus::Unreachable => "Unreachable",
-                    PageStatus::Stalled => "Stalled",
-                }
-                .to_string(),
-                nonfinite: !samples.iter().all(|p| p.is_finite()),
+                ..FrameRecord::new(frame, step_ms, status.to_string(), nonfinite)
             });
             observe(frame, n, Shape::Page(page));
             progress(frame + 1, n);
@@ -337,11 +352,8 @@ pub fn run(
                 .chain(&book.state().v)
                 .all(|p| p.is_finite());
             records.push(FrameRecord {
-                frame,
-                step_ms,
                 max_stretch: stretch.map(|s| s.0),
                 rmse_stretch: stretch.map(|s| s.1),
-                angle_defect: None,
                 dog_residual: book.dog_residual(),
                 penetration: book.penetration(),
                 dofs: Some(report.dofs),
@@ -349,12 +361,12 @@ pub fn run(
                 terms: Some(report.census.potentials + report.census.constraints),
                 contact_tests: Some(report.contacts.tested),
                 snapshot: Some(report.snapshot),
-                propagations: None,
-                refused: None,
-                flips: None,
-                triangles: None,
-                status: format!("{:?}", report.solver.status),
-                nonfinite: !finite,
+                ..FrameRecord::new(
+                    frame,
+                    step_ms,
+                    format!("{:?}", report.solver.status),
+                    !finite,
+                )
             });
             observe(frame, n, Shape::Book(&book));
             progress(frame + 1, n);

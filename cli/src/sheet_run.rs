@@ -165,24 +165,13 @@ pub fn run(
             .chain(mesh.velocities())
             .all(|x| x.is_finite());
         records.push(FrameRecord {
-            frame,
-            step_ms,
             max_stretch: Some(max),
             rmse_stretch: Some(rmse),
-            angle_defect: None,
-            dog_residual: None,
-            penetration: None,
-            dofs: None,
-            constraint_rows: None,
-            terms: None,
-            contact_tests: None,
-            snapshot: None,
             propagations: Some(step.propagations),
             refused: Some(step.refused),
             flips: Some(step.flips),
             triangles: Some(mesh.triangle_count()),
-            status: format!("{:?}", step.status),
-            nonfinite: !finite,
+            ..FrameRecord::new(frame, step_ms, format!("{:?}", step.status), !finite)
         });
         observe(frame, n, Shape::Sheet(&sheet));
         progress(frame + 1, n);
