@@ -65,15 +65,9 @@ fn play(
     frames: usize,
     length: f64,
 ) -> Vec<FrameReport<f64>> {
-    let h = sheet.settings().time_step;
     let mut reports = Vec::new();
     for frame in 0..frames {
-        let t = (frame + 1) as f64 * h;
-        for p in pulls {
-            sheet
-                .move_finger(p.finger, p.start + p.velocity * t)
-                .expect("move");
-        }
+        place(sheet, pulls, frame);
         reports.push(sheet.step());
         assert_sound(sheet, frame);
         if tear_length(sheet) >= length {
@@ -88,7 +82,17 @@ fn tear_length(sheet: &TearingSheet<f64>) -> f64 {
         .tears()
         .tears()
         .first()
-        .map_or(0.0, |t| t.path.windows(2).map(|w| dist(w[0], w[1])).sum())
+        .map_or(0.0, |t| path_length(&t.path))
+}
+
+/// Moves every finger of `pulls` to where it is at the end of frame `frame`, $t = (f+1)h$.
+fn place(sheet: &mut TearingSheet<f64>, pulls: &[Pull], frame: usize) {
+    let t = (frame + 1) as f64 * sheet.settings().time_step;
+    for p in pulls {
+        sheet
+            .move_finger(p.finger, p.start + p.velocity * t)
+            .expect("move");
+    }
 }
 
 fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -142,12 +146,7 @@ fn a_tear_reaching_the_edge_separates_the_piece() {
     ];
     let mut separated_at = None;
     for frame in 0..400 {
-        let t = (frame + 1) as f64 * sheet.settings().time_step;
-        for p in &pulls {
-            sheet
-                .move_finger(p.finger, p.start + p.velocity * t)
-                .expect("move");
-        }
+        place(&mut sheet, &pulls, frame);
         let report = sheet.step();
         assert!(report.status.advanced(), "frame {frame}: {report:?}");
         assert_sound(&sheet, frame);
@@ -602,7 +601,6 @@ fn changed_finger_positions_branch_the_tear() {
         grab(&mut sheet, [4.5, 1.5], DVec3::new(0.0, -0.4, 0.0)),
         grab(&mut sheet, [4.5, 4.5], DVec3::new(0.0, 0.4, 0.0)),
     ];
-    let h = sheet.settings().time_step;
     let side_branch = |sheet: &TearingSheet<f64>| {
         let tears = sheet.tears().tears();
         tears.iter().position(|t| {
@@ -617,12 +615,7 @@ fn changed_finger_positions_branch_the_tear() {
     let mut frames = 0;
     let mut branched = None;
     while frames < 480 && side_branch(&sheet).is_none() {
-        let t = (frames + 1) as f64 * h;
-        for p in &pulls {
-            sheet
-                .move_finger(p.finger, p.start + p.velocity * t)
-                .expect("move");
-        }
+        place(&mut sheet, &pulls, frames);
         let report = sheet.step();
         assert!(report.status.advanced(), "frame {frames}: {report:?}");
         assert_sound(&sheet, first.len() + frames);

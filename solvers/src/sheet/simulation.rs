@@ -261,10 +261,10 @@ impl<T: Real> TearingSheet<T> {
                 } else {
                     &[]
                 };
-                let fingers: Vec<u32> = self.fingers.iter().map(|f| f.vertex).collect();
+                // The held vertices are the fingers' vertices, in finger order.
                 let step = self
                     .tears
-                    .step(&mut self.mesh, &self.gradients, &fingers, junctions);
+                    .step(&mut self.mesh, &self.gradients, &self.held, junctions);
                 if step.refused.is_some() {
                     report.refused += 1;
                 }
