@@ -8,7 +8,7 @@
 use core::hint::black_box;
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use folio_bench::book::PAGE_TURN;
-use folio_solvers::book::{Book, BookSettings, Script};
+use folio_book::{Book, BookSettings, Script};
 
 /// A book after `frames` frames of the page-turn fixture.
 fn book_at(settings: BookSettings<f64>, frames: u32) -> Book<f64> {

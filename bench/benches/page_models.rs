@@ -8,12 +8,12 @@
 use core::hint::black_box;
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use folio_bench::pages::{PAGE_TURN, render_grid};
+use folio_book::BookSettings;
 use folio_kernels::Real;
-use folio_solvers::book::BookSettings;
-use folio_solvers::page::cone::{ConePage, ConeSettings};
-use folio_solvers::page::dog::DogPage;
-use folio_solvers::page::spring::{Integrator, SpringPage, SpringSettings};
-use folio_solvers::page::{PageModel, TouchScript};
+use folio_pages::cone::{ConePage, ConeSettings};
+use folio_pages::dog::DogPage;
+use folio_pages::spring::{Integrator, SpringPage, SpringSettings};
+use folio_pages::{PageModel, TouchScript};
 
 /// The frame the models are measured at.
 const FRAME: u32 = 70;

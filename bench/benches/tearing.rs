@@ -20,7 +20,7 @@ use core::time::Duration;
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use folio_bench::tearing::{ASYMMETRIC, Scene, TearInputs};
-use folio_solvers::sheet::SheetEffects;
+use folio_tearing::sheet::SheetEffects;
 
 /// Frames played before the measured one.
 const WARM_FRAMES: usize = 10;

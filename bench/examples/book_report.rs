@@ -4,7 +4,7 @@
 //! All in one run: `cargo run --release -p folio-bench --example book_report`.
 
 use folio_bench::book::{PAGE_TURN, Play, play, quantile};
-use folio_solvers::book::{BookSettings, Script};
+use folio_book::{BookSettings, Script};
 
 fn row(name: &str, p: &Play, baseline: f64) {
     let median = quantile(&p.step_seconds, 0.5) * 1e6;

@@ -5,7 +5,7 @@
 //! All in one run: `cargo run --release -p folio-bench --example effects_report`.
 
 use folio_bench::book::{PAGE_TURN, Play, play, quantile};
-use folio_solvers::book::{Book, BookSettings, Effects, Script};
+use folio_book::{Book, BookSettings, Effects, Script};
 
 /// The book with `effects`.
 fn with(effects: Effects) -> BookSettings<f64> {

@@ -10,8 +10,8 @@ use std::time::Instant;
 use folio_bench::book::quantile;
 use folio_bench::pages::{PAGE_TURN, mean, models, play, render_grid};
 use folio_kernels::Real;
-use folio_solvers::page::spring::{SpringPage, SpringSettings};
-use folio_solvers::page::{PageModel, TouchScript};
+use folio_pages::spring::{SpringPage, SpringSettings};
+use folio_pages::{PageModel, TouchScript};
 
 fn main() {
     let script = TouchScript::parse(PAGE_TURN).expect("fixture");

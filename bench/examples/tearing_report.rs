@@ -26,7 +26,7 @@ use std::time::Instant;
 
 use folio_bench::book::quantile;
 use folio_bench::tearing::{ASYMMETRIC, ConeInputs, Scene, TearInputs, membrane_gradients};
-use folio_solvers::sheet::SheetEffects;
+use folio_tearing::sheet::SheetEffects;
 
 /// Frames played per configuration.
 const FRAMES: usize = 240;

@@ -2,7 +2,7 @@
 
 use std::time::Instant;
 
-use folio_solvers::book::{Book, BookSettings, Script};
+use folio_book::{Book, BookSettings, Script};
 
 /// The page-turn fixture (750 frames at 60 fps).
 pub const PAGE_TURN: &str = include_str!("../../tests/fixtures/page_turn.input");

@@ -3,13 +3,13 @@
 
 use std::time::Instant;
 
+use folio_book::BookSettings;
 use folio_geometry::QuadGrid;
 use folio_kernels::Real;
-use folio_solvers::book::BookSettings;
-use folio_solvers::page::cone::{ConePage, ConeSettings};
-use folio_solvers::page::dog::DogPage;
-use folio_solvers::page::spring::{Integrator, SpringPage, SpringSettings};
-use folio_solvers::page::{PageModel, PageStatus, TouchScript, frame_metrics};
+use folio_pages::cone::{ConePage, ConeSettings};
+use folio_pages::dog::DogPage;
+use folio_pages::spring::{Integrator, SpringPage, SpringSettings};
+use folio_pages::{PageModel, PageStatus, TouchScript, frame_metrics};
 
 /// The shared page turn (240 frames at 60 fps, `tests/fixtures/page_turn.touch`).
 pub const PAGE_TURN: &str = include_str!("../../tests/fixtures/page_turn.touch");

@@ -6,12 +6,12 @@
 //! Besides the whole frame, the parts of a frame can be replayed on copies of a sheet:
 //! [`TearInputs`] (the tearing step, [`Tears::step`]) and [`ConeInputs`] (the cone layer's
 //! update and remesh), each built from the sheet's public state the way
-//! `folio_solvers::sheet::TearingSheet::step` builds it.
+//! `folio_tearing::sheet::TearingSheet::step` builds it.
 
 use folio_geometry::SheetMesh;
 use folio_geometry::sheet::{ConeLayer, ConeSettings};
 use folio_kernels::{Potential, Real};
-use folio_solvers::sheet::{FrameReport, SheetEffects, SheetModel, SheetSettings, TearingSheet};
+use folio_tearing::sheet::{FrameReport, SheetEffects, SheetModel, SheetSettings, TearingSheet};
 use folio_tearing::{TearStep, Tears};
 
 /// The 3D vector type of `f64`.

@@ -1,9 +1,9 @@
 //! A book of either precision behind one type, so that a handle can name both.
 
+use folio_book::{Book, BookError, DragOutcome, GrabOutcome, PageCounts};
 use folio_geometry::mesh::{MeshError, TriMesh};
 use folio_geometry::{BlockSide, QuadGrid};
 use folio_kernels::{Real, Vec3Ops};
-use folio_solvers::book::{Book, BookError, DragOutcome, GrabOutcome, PageCounts};
 
 use crate::step::FolioStepReport;
 

@@ -1,6 +1,6 @@
 //! Creating and destroying books.
 
-use folio_solvers::book::Book;
+use folio_book::Book;
 
 use crate::any_book::AnyBook;
 use crate::entry::Entry;

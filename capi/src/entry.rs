@@ -13,7 +13,7 @@ use crate::step::FolioStepReport;
 pub(crate) struct Entry {
     /// The book.
     pub book: AnyBook,
-    /// [`folio_solvers::book::Book::mesh`] of the current state, when `mesh_fresh`.
+    /// [`folio_book::Book::mesh`] of the current state, when `mesh_fresh`.
     mesh: TriMesh,
     /// `false` after anything that may change the mesh (grab, release, step).
     mesh_fresh: bool,

@@ -2,8 +2,8 @@
 
 use alloc::string::String;
 
+use folio_book::BookError;
 use folio_solvers::SolverError;
-use folio_solvers::book::BookError;
 
 use crate::status::FolioStatus;
 

@@ -1,7 +1,7 @@
 //! The user's hand: grab, drag, release.
 
+use folio_book::{DragOutcome, GrabOutcome};
 use folio_geometry::BlockSide;
-use folio_solvers::book::{DragOutcome, GrabOutcome};
 
 use crate::failure::Failure;
 use crate::guard;

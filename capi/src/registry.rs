@@ -155,7 +155,7 @@ mod tests {
     use super::*;
     use crate::any_book::AnyBook;
     use crate::guard;
-    use folio_solvers::book::{Book, BookSettings};
+    use folio_book::{Book, BookSettings};
 
     /// A panic while a call holds a book poisons that book only: later calls on it answer
     /// `POISONED`, destroy still works, other books are untouched.

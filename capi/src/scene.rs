@@ -2,8 +2,8 @@
 
 use core::ffi::{CStr, c_char};
 
-use folio::scene::{ModelKind, Scene};
-use folio_solvers::book::Book;
+use folio_book::Book;
+use folio_scene::scene::{ModelKind, Scene};
 
 use crate::any_book::AnyBook;
 use crate::create::register;
@@ -59,7 +59,7 @@ pub unsafe extern "C" fn folio_book_create_from_scene(
                 "the scene's model is {model:?}; the C API simulates the DOG book (model = \"dog\")"
             )));
         }
-        let settings = folio::settings::book_settings::<f64>(&scene);
+        let settings = folio_scene::settings::book_settings::<f64>(&scene);
         let book = Book::new(settings).map_err(|e| {
             let f = Failure::book(e);
             match f.status {

@@ -1,8 +1,8 @@
 //! `FolioBookSettings`: the book a C caller asks for, and its conversion to the solver's
 //! `BookSettings`.
 
+use folio_book::{BookSettings, Effects};
 use folio_kernels::Real;
-use folio_solvers::book::{BookSettings, Effects};
 
 use crate::failure::Failure;
 use crate::guard;

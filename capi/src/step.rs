@@ -1,8 +1,8 @@
 //! `folio_book_step` and its `#[repr(C)]` report.
 
+use folio_book::{Book, BookStepReport, Phase};
 use folio_kernels::Real;
 use folio_solvers::StepStatus;
-use folio_solvers::book::{Book, BookStepReport, Phase};
 
 use crate::guard;
 use crate::handle::FolioBookHandle;

@@ -8,9 +8,9 @@ mod common;
 use common::*;
 use core::ffi::c_char;
 use core::ptr;
+use folio_book::{Book, BookSettings};
 use folio_capi::*;
 use folio_geometry::mesh::TriMesh;
-use folio_solvers::book::{Book, BookSettings};
 
 /// Sentinel for "not written".
 const UNTOUCHED: f32 = -12345.0;

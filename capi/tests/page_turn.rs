@@ -7,10 +7,10 @@
 mod common;
 
 use common::*;
+use folio_book::{Book, BookSettings, GrabOutcome};
 use folio_capi::*;
 use folio_geometry::BlockSide;
 use folio_kernels::{Real, Vec3Ops};
-use folio_solvers::book::{Book, BookSettings, GrabOutcome};
 
 /// Drag steps over the spine.
 const DRAG_STEPS: u32 = 100;

@@ -29,8 +29,8 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use folio::builtin;
-use folio::scene::Scene;
+use folio_scene::builtin;
+use folio_scene::scene::Scene;
 use run::Report;
 
 const USAGE: &str = "usage: folio [run SCENE_OR_NAME [--out DIR] | list | check SCENE...]";

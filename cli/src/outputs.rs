@@ -9,8 +9,8 @@
 use std::path::{Path, PathBuf};
 
 use folio_geometry::mesh::TriMesh;
-use folio_solvers::sheet::TearingSheet;
 use folio_tearing::Side;
+use folio_tearing::sheet::TearingSheet;
 
 use crate::export::Animation;
 use crate::render::{self, ContactSheet, SheetSettings, book_bounds};
@@ -19,7 +19,7 @@ use crate::sheet_view::{
     Cutout, SHEET_EYE, SHEET_LIGHT, mesh_bounds, render_mesh, sheet_bounds, tear_png,
 };
 use crate::timeline::timeline_svg;
-use folio::scene::{ModelKind, Scene};
+use folio_scene::scene::{ModelKind, Scene};
 
 /// Frames per second of every scene (the animation's clock).
 const FPS: f32 = 60.0;
@@ -63,11 +63,12 @@ impl Outputs {
         let is_sheet = *scene.model.get_ref() == ModelKind::Sheet;
         let mut settings = SheetSettings::default();
         let bounds = if is_sheet {
-            settings.paper.thickness =
-                folio::settings::sheet_settings(scene).tearing.thickness as f32;
+            settings.paper.thickness = folio_scene::settings::sheet_settings(scene)
+                .tearing
+                .thickness as f32;
             settings.eye = SHEET_EYE;
             settings.light = SHEET_LIGHT;
-            sheet_bounds(folio::sheet::size(scene))
+            sheet_bounds(folio_scene::sheet::size(scene))
         } else {
             settings.paper.thickness = scene
                 .book

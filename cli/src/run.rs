@@ -4,21 +4,22 @@
 use alloc::collections::BTreeMap;
 use std::time::Instant;
 
+use folio_book::BookParams;
+use folio_book::{Action, Book, Script};
+use folio_geometry::QuadGrid;
 use folio_geometry::mesh::TriMesh;
-use folio_geometry::{BookParams, QuadGrid};
-use folio_solvers::book::{Action, Book, Script};
-use folio_solvers::page::cone::{ConePage, ConeSettings};
-use folio_solvers::page::dog::DogPage;
-use folio_solvers::page::spring::SpringPage;
-use folio_solvers::page::{PageModel, PageStatus, TouchScript, frame_metrics};
-use folio_solvers::sheet::TearingSheet;
+use folio_pages::cone::{ConePage, ConeSettings};
+use folio_pages::dog::DogPage;
+use folio_pages::spring::SpringPage;
+use folio_pages::{PageModel, PageStatus, TouchScript, frame_metrics};
+use folio_tearing::sheet::TearingSheet;
 
-use folio::events;
-use folio::settings::{book_settings, spring_settings};
+use folio_scene::events;
+use folio_scene::settings::{book_settings, spring_settings};
 use serde::Serialize;
 
-use folio::fixtures::{self, Kind};
-use folio::scene::{ModelKind, Scene};
+use folio_scene::fixtures::{self, Kind};
+use folio_scene::scene::{ModelKind, Scene};
 
 use crate::sheet_run::TearingLog;
 
@@ -213,7 +214,7 @@ impl Shape<'_> {
                 let grid = QuadGrid::new(RENDER_QUADS.0, RENDER_QUADS.1)
                     .ok_or_else(|| fail("render grid"))?;
                 let thickness = BookParams::default().page_thickness;
-                folio_solvers::page::mesh(*page, grid, thickness, out).map_err(fail)
+                folio_pages::mesh(*page, grid, thickness, out).map_err(fail)
             }
             Self::Sheet(sheet) => {
                 let s = sheet.settings();
@@ -441,7 +442,7 @@ impl Report {
     /// The expectations of `expect` this report does not meet, as messages (empty: all met).
     /// Non-finite frames always fail.
     #[must_use]
-    pub fn unmet(&self, expect: &folio::scene::Expect) -> Vec<String> {
+    pub fn unmet(&self, expect: &folio_scene::scene::Expect) -> Vec<String> {
         let s = &self.summary;
         let mut out = Vec::new();
         if s.nonfinite_frames > 0 {

@@ -1,6 +1,6 @@
 //! Running a sheet scene (`model = "sheet"`, seed `002_…`): before every frame the hands
-//! place their fingers ([`folio::hands`]), the sheet steps (physics, cone remesh, tearing:
-//! `folio_solvers::sheet::TearingSheet::step`), and the frame is measured; the run ends in
+//! place their fingers ([`folio_scene::hands`]), the sheet steps (physics, cone remesh, tearing:
+//! `folio_tearing::sheet::TearingSheet::step`), and the frame is measured; the run ends in
 //! a [`Report`] whose summary gives the tears' lengths and whose [`TearingLog`] lists every
 //! propagation and tear path.
 //!
@@ -15,7 +15,7 @@ use folio_geometry::sheet::NONE;
 use folio_tearing::{Edit, Kind, Propagation};
 use serde::Serialize;
 
-use folio::scene::Scene;
+use folio_scene::scene::Scene;
 
 use crate::run::{FrameRecord, Report, RunError, Shape, fail, summarize};
 
@@ -140,8 +140,8 @@ pub fn run(
     mut progress: impl FnMut(u32, u32),
     mut observe: impl FnMut(u32, u32, Shape<'_>),
 ) -> Result<Report, RunError> {
-    let (mut sheet, mut hands) = folio::sheet::setup(scene).map_err(|e| fail(e.1))?;
-    let n = folio::sheet::frames(scene).map_err(|e| fail(e.1))?;
+    let (mut sheet, mut hands) = folio_scene::sheet::setup(scene).map_err(|e| fail(e.1))?;
+    let n = folio_scene::sheet::frames(scene).map_err(|e| fail(e.1))?;
     let mut records = Vec::with_capacity(n as usize);
     let mut propagations = Vec::new();
     for frame in 0..n {

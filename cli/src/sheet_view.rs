@@ -27,7 +27,7 @@ use std::io;
 use folio_geometry::SheetMesh;
 use folio_geometry::mesh::{Surface, TriMesh};
 use folio_kernels::Vec3Ops;
-use folio_solvers::sheet::TearingSheet;
+use folio_tearing::sheet::TearingSheet;
 use folio_tearing::{AlphaPair, Side, Tear};
 
 use crate::render::encode_png;

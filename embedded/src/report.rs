@@ -2,7 +2,7 @@
 //! `summary:` that CI can pick up.
 
 use cortex_m_semihosting::hprintln;
-use folio_solvers::book::Phase;
+use folio_book::Phase;
 
 use crate::memory::Footprint;
 use crate::turn::TurnReport;

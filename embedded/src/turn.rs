@@ -10,10 +10,10 @@
 //! step that failed to advance the state; the book at rest at the end.
 
 use cortex_m_semihosting::hprintln;
+use folio_book::{Book, BookSettings, PageCounts, Phase, Script};
 use folio_geometry::BlockSide;
 use folio_kernels::Vec3Ops;
 use folio_solvers::StepStatus;
-use folio_solvers::book::{Book, BookSettings, PageCounts, Phase, Script};
 
 use crate::Real;
 use crate::clock::Clock;

@@ -3,8 +3,6 @@
 //! Geometry of Folio's book (seed `000_…` Sec. 3): `no_std` + `alloc`.
 //!
 //! - [`grid`]: the active page's DOG quad grid, its stars and edges.
-//! - [`layout`]: the book layout from its parameters: page-block midlines, binding edge,
-//!   hard cover, and the rest shape of a page lying on a block.
 //! - [`collision`]: the 2D collision projection of Sec. 3.4.
 //! - [`mesh`]: the triangle mesh for rendering of Sec. 3.5.
 //! - [`sheet`]: the tearing sheet of seed `002_…`: a coarse triangle mesh with its 2D
@@ -18,11 +16,10 @@ extern crate alloc;
 
 pub mod collision;
 pub mod grid;
-pub mod layout;
 pub mod mesh;
 pub mod sheet;
 
 pub use collision::{Contacts, Floor, Obstacle, Wall};
 pub use grid::{QuadGrid, Star};
-pub use layout::{BlockSide, BookLayout, BookParams, LayoutError};
+pub use mesh::BlockSide;
 pub use sheet::{SheetError, SheetMesh};

@@ -12,7 +12,12 @@
 //!   analysis, and the refined solve.
 //! - [`step`]: [`Solver::step`], one time step with a [`StepReport`].
 //! - [`matrix_market`]: export of the assembled KKT matrix.
-//! - `sheet` (feature `tearing`): the tearing sheet of seed `002_…`.
+//!
+//! It holds no model: anything that implements [`Model`] can be stepped, and the KKT
+//! machinery ([`pattern`], [`symbolic`], [`ldlt`], [`kkt`]) is usable on its own for any
+//! symmetric quasi-definite system with known pivot signs. The models live above it: the
+//! DOG book in `folio-book`, the page models in `folio-pages`, the tearing sheet in
+//! `folio-tearing`. It depends on `folio-kernels` alone (and faer for the AMD ordering).
 //!
 //! Setup allocates; a step on an analysed topology does not (a test with a counting
 //! allocator holds this).
@@ -21,20 +26,15 @@
 extern crate alloc;
 
 mod assembly;
-#[cfg(feature = "book")]
-pub mod book;
 pub mod error;
 pub mod kkt;
 pub mod ldlt;
 pub mod matrix_market;
 pub mod model;
 pub mod ordering;
-pub mod page;
 pub mod pattern;
 pub mod report;
 pub mod settings;
-#[cfg(feature = "tearing")]
-pub mod sheet;
 pub mod step;
 pub mod symbolic;
 

@@ -1,9 +1,7 @@
 //! # folio-tearing
 //!
 //! Interactive paper tearing after seed `002_…` (Schreck, Rohmer, Hahmann, *Interactive
-//! paper tearing*), everything of it that is not physics: `no_std` + `alloc`. The physics
-//! (the implicit step of the sheet whose in-plane forces drive the tear) is
-//! `folio_solvers::sheet`.
+//! paper tearing*), `no_std` + `alloc`: the tearing sheet's physics and the tearing itself.
 //!
 //! - [`candidates`]: the potential tearing points (Sec. 4.1).
 //! - [`fiber`]: the seeded Perlin fiber texture $T_{\text{fibers}}(u, v)$ (Sec. 4.2).
@@ -15,6 +13,12 @@
 //! - [`texture`]: the left and right alpha textures cut along a detail path (Sec. 6.2).
 //! - [`settings`]: the settings of the tearing step, [`TearSettings`].
 //! - [`error`]: [`TearingError`], the typed error of the settings and rasters.
+//! - [`sheet`]: the sheet's physics: [`sheet::SheetModel`] (membranes, hinges, gravity,
+//!   fingers) stepped by `folio-solvers`, and [`sheet::TearingSheet`], a frame of physics,
+//!   cone remesh and tearing.
+//!
+//! Layers: `folio-kernels` (membrane and hinge terms), `folio-geometry` (the sheet mesh, its
+//! edits and the cone layer) and `folio-solvers` (the implicit step) below.
 #![cfg_attr(not(feature = "std"), no_std)]
 
 extern crate alloc;
@@ -25,6 +29,7 @@ pub mod detail;
 pub mod error;
 pub mod fiber;
 pub mod settings;
+pub mod sheet;
 pub mod split;
 pub mod tears;
 pub mod texture;

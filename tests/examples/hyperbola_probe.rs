@@ -16,8 +16,8 @@
 
 use folio_geometry::SheetMesh;
 use folio_kernels::Potential;
-use folio_solvers::sheet::{SheetSettings, TearingSheet};
 use folio_tearing::advance::advance;
+use folio_tearing::sheet::{SheetSettings, TearingSheet};
 use folio_tearing::{TearSettings, Tears};
 use glam::DVec3;
 

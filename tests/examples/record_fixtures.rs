@@ -1,8 +1,8 @@
 //! Writes the recorded inputs in `tests/fixtures/`:
-//! - for the book (see `folio_solvers::book::script`): a camera above and in front of the
+//! - for the book (see `folio_book::script`): a camera above and in front of the
 //!   default book, and finger paths on the table plane turned into camera rays, as a touch
 //!   screen with that camera would produce them;
-//! - for the page models (see `folio_solvers::page::touch`): the shared page turn
+//! - for the page models (see `folio_pages::touch`): the shared page turn
 //!   `page_turn.touch` and seed 003's experiment `seed003_turn.touch`, finger positions in
 //!   the page frame.
 //!
@@ -99,13 +99,8 @@ fn main() -> std::io::Result<()> {
     flip.line(331, "release");
     std::fs::write(dir.join("bookmark_flip.input"), flip.text)?;
 
-    let touch = folio_solvers::page::TouchScript::page_turn(
-        12.0,
-        12.0 * core::f64::consts::SQRT_2,
-        10,
-        120,
-        240,
-    );
+    let touch =
+        folio_pages::TouchScript::page_turn(12.0, 12.0 * core::f64::consts::SQRT_2, 10, 120, 240);
     let header = "# The shared page turn of the page models: grab the fore-edge near the bottom corner, carry it over the spine in 2 s, let go.\n";
     std::fs::write(
         dir.join("page_turn.touch"),
@@ -121,7 +116,7 @@ fn main() -> std::io::Result<()> {
             [25.0 * phi.cos(), 17.5 * phi.sin(), 12.5]
         })
         .collect();
-    let seed = folio_solvers::page::TouchScript {
+    let seed = folio_pages::TouchScript {
         frames: 300,
         grab: [25.0, 12.5],
         grab_frame: 10,

@@ -1,11 +1,9 @@
 //! The book of seed `000_…` on its recorded fixtures: page turn, peek, finger-bookmarking;
 //! a book at rest; determinism; bad input.
 
+use folio_book::{Book, BookError, BookSettings, DragOutcome, GrabOutcome, Phase, Ray, Script};
 use folio_geometry::BlockSide;
 use folio_kernels::{Real, Vec3Ops};
-use folio_solvers::book::{
-    Book, BookError, BookSettings, DragOutcome, GrabOutcome, Phase, Ray, Script,
-};
 
 const PAGE_TURN: &str = include_str!("../fixtures/page_turn.input");
 const PEEK: &str = include_str!("../fixtures/peek.input");
@@ -234,17 +232,15 @@ fn bad_input_is_refused_without_changing_the_book() {
     ));
     // Found by the C API's fuzz test: a page 1e300 wide was accepted, and a later grab
     // measured only infinite distances and held a node that is not a page node.
-    for width in [1e300, f64::MAX, 2.0 * folio_geometry::layout::MAX_EXTENT] {
+    for width in [1e300, f64::MAX, 2.0 * folio_book::layout::MAX_EXTENT] {
         assert!(matches!(
             bad(&|s| s.params.page_width = width),
-            Some(BookError::Layout(
-                folio_geometry::LayoutError::TooLarge { .. }
-            ))
+            Some(BookError::Layout(folio_book::LayoutError::TooLarge { .. }))
         ));
     }
     assert!(matches!(
         bad(&|s| s.params.page_thickness = 1e4),
-        Some(BookError::Layout(folio_geometry::LayoutError::TooLarge {
+        Some(BookError::Layout(folio_book::LayoutError::TooLarge {
             field: "page_thickness"
         }))
     ));

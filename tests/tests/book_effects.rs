@@ -3,11 +3,11 @@
 //! with the full one: its term family is empty, every other family is unchanged, and the
 //! step reports show the rows and the work gone. A book at rest simulates only its blocks.
 
-use folio_geometry::BlockSide;
-use folio_solvers::book::{
+use folio_book::{
     Book, BookError, BookSettings, BookStepReport, BookmarkOutcome, Effects, Family, GrabOutcome,
     Phase, Script,
 };
+use folio_geometry::BlockSide;
 
 const PAGE_TURN: &str = include_str!("../fixtures/page_turn.input");
 const BOOKMARK_FLIP: &str = include_str!("../fixtures/bookmark_flip.input");
@@ -68,10 +68,10 @@ fn play(book: &mut Book<f64>, text: &str, frames: u32) -> Work {
                 .apply(script.camera, script.forward, e.action)
                 .expect("fixture input is valid");
             match outcome {
-                folio_solvers::book::InputOutcome::Bookmark(BookmarkOutcome::Started) => {
+                folio_book::InputOutcome::Bookmark(BookmarkOutcome::Started) => {
                     w.bookmarks_started += 1;
                 }
-                folio_solvers::book::InputOutcome::Bookmark(BookmarkOutcome::Disabled) => {
+                folio_book::InputOutcome::Bookmark(BookmarkOutcome::Disabled) => {
                     w.bookmarks_disabled += 1;
                 }
                 _ => {}

@@ -2,10 +2,10 @@
 //! cover), after a grab (the active page appears), after a drag and a few steps, and with an
 //! empty block; in both precisions.
 
+use folio_book::{Book, BookSettings, GrabOutcome};
 use folio_geometry::BlockSide;
 use folio_geometry::mesh::{Surface, TriMesh};
 use folio_kernels::{Real, Vec3Ops};
-use folio_solvers::book::{Book, BookSettings, GrabOutcome};
 
 /// Every position finite, every normal of unit length, every index in range, UVs in
 /// $[0, 1]^2$, one surface per triangle.

@@ -3,16 +3,14 @@
 //! same recorded drag on every model with the shared metrics.
 
 use core::f64::consts::{FRAC_PI_2, SQRT_2};
+use folio_book::BookSettings;
 use folio_geometry::QuadGrid;
 use folio_kernels::cone::ConeCurl;
 use folio_kernels::{Real, Vec3Ops};
-use folio_solvers::book::BookSettings;
-use folio_solvers::page::cone::{ConePage, ConeParameters, ConeSettings, flip_parameters};
-use folio_solvers::page::dog::DogPage;
-use folio_solvers::page::spring::{SpringPage, SpringSettings};
-use folio_solvers::page::{
-    FrameMetrics, PageError, PageModel, PageStatus, TouchScript, frame_metrics,
-};
+use folio_pages::cone::{ConePage, ConeParameters, ConeSettings, flip_parameters};
+use folio_pages::dog::DogPage;
+use folio_pages::spring::{SpringPage, SpringSettings};
+use folio_pages::{FrameMetrics, PageError, PageModel, PageStatus, TouchScript, frame_metrics};
 
 const WIDTH: f64 = 12.0;
 const HEIGHT: f64 = 12.0 * SQRT_2;
@@ -248,7 +246,7 @@ fn every_model_refuses_bad_input() {
 #[test]
 fn every_model_meshes_with_its_back_facing_away() {
     use folio_geometry::mesh::{Surface, TriMesh};
-    use folio_solvers::page::mesh;
+    use folio_pages::mesh;
     let script = TouchScript::parse(PAGE_TURN).unwrap();
     let mut models = all_models::<f64>();
     for model in &mut models {

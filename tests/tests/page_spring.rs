@@ -1,4 +1,4 @@
-//! The mass-spring page of seed 003 (`folio_solvers::page::spring`): energy decay, the
+//! The mass-spring page of seed 003 (`folio_pages::spring`): energy decay, the
 //! dog-ear synchronization, Lagrange interpolation through the particles, key-frame replay,
 //! the seed's experiment as a fixture in both precisions, bad input, implicit against
 //! semi-implicit Euler at a large time step, and no allocation in a frame.
@@ -12,11 +12,11 @@ use std::time::Instant;
 
 use folio_geometry::QuadGrid;
 use folio_kernels::{Real, Vec3Ops};
-use folio_solvers::page::spring::{
+use folio_pages::spring::{
     Grip, Integrator, KeyFrames, LagrangeSurface, ReplayPage, Role, SpringPage, SpringSettings,
 };
-use folio_solvers::page::touch::Touch;
-use folio_solvers::page::{PageError, PageModel, PageStatus, PageStep, TouchScript};
+use folio_pages::touch::Touch;
+use folio_pages::{PageError, PageModel, PageStatus, PageStep, TouchScript};
 use folio_tests::Rng;
 use glam::DVec3;
 
@@ -1126,7 +1126,7 @@ impl TurnReport {
 /// fixture `tests/fixtures/page_turn.touch`) on a spring page of `settings` (a 12 x 12 sqrt 2
 /// page) and measures it as `page_models.rs` does.
 fn shared_turn(settings: SpringSettings<f64>) -> TurnReport {
-    use folio_solvers::page::frame_metrics;
+    use folio_pages::frame_metrics;
     let script = TouchScript::page_turn(12.0, 12.0 * 2f64.sqrt(), 10, 120, 240);
     let mut page = SpringPage::<f64>::new(settings).unwrap();
     let render = QuadGrid::new(24, 34).unwrap();

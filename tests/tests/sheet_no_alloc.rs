@@ -13,7 +13,7 @@ use std::alloc::System;
 use folio_geometry::SheetMesh;
 use folio_geometry::sheet::Region;
 use folio_kernels::{Real, Vec3Ops};
-use folio_solvers::sheet::{SheetEffects, SheetSettings, TearingSheet};
+use folio_tearing::sheet::{SheetEffects, SheetSettings, TearingSheet};
 
 /// Counts the allocations of the thread that makes them: the test harness's own threads
 /// (measured: about one run in thirty sees a few allocations from them while a frame runs)

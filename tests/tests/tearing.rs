@@ -6,8 +6,8 @@
 //! and bad input. Run with `--nocapture` for the measured figures.
 
 use folio_geometry::SheetMesh;
-use folio_solvers::sheet::{FrameReport, SheetSettings, TearingSheet, TearingSheetError};
 use folio_tearing::Kind;
+use folio_tearing::sheet::{FrameReport, SheetSettings, TearingSheet, TearingSheetError};
 use glam::DVec3;
 
 /// Rows and columns of the default 12 x 9 sheet (8 x 6 quads): vertex `i + 9 j` is at

@@ -15,11 +15,27 @@ use super::vector::{
     add, arc_parameter, dot, fill_backward, fill_forward, lift, polyline_length, scale, sub, unit,
 };
 
-/// The side of the book a page block lies on: the layout's [`BlockSide`],
-/// re-exported. The left block's material lies on the right-hand side of its midline's
-/// direction of travel (the tangent rotated by −90°, $(t_y, -t_x)$), the right block's on the
-/// left-hand side, $(-t_y, t_x)$.
-pub use crate::layout::BlockSide;
+/// The side of the book a page block lies on. The left block's material lies on the
+/// right-hand side of its midline's direction of travel (the tangent rotated by −90°,
+/// $(t_y, -t_x)$), the right block's on the left-hand side, $(-t_y, t_x)$.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BlockSide {
+    /// The left block (X < 0).
+    Left,
+    /// The right block (X > 0).
+    Right,
+}
+
+impl BlockSide {
+    /// The other side.
+    #[must_use]
+    pub fn opposite(self) -> Self {
+        match self {
+            Self::Left => Self::Right,
+            Self::Right => Self::Left,
+        }
+    }
+}
 
 /// The unit normal on `side`'s material side of the unit direction `t`.
 fn material_normal(side: BlockSide, t: [f64; 2]) -> [f64; 2] {

@@ -1,0 +1,532 @@
+//! The book as a [`Model`] (seed `000_…` Sec. 3.1-3.3): node numbering, masses, eliminated
+//! coordinates and every term family, and the two views the book steps: the blocks alone
+//! (a book at rest) and the blocks with the active page.
+//!
+//! Nodes: the left block's midline from $b_1$ outward (`0..m`), the right block's from $b_2$
+//! outward (`m..2m`), the outer ends of the left and right cover boards (with a cover), then
+//! the active page's grid (`i + nx j`, column `i = 0` bound to the binding). Z is eliminated
+//! for every midline and cover node and for the bound column (Sec. 3.1).
+
+use crate::BookLayout;
+use alloc::vec::Vec;
+use folio_geometry::{QuadGrid, Star};
+use folio_kernels::binding::Binding;
+use folio_kernels::contact::ContactPlane;
+use folio_kernels::curve_laplacian::{self, CurveLaplacian};
+use folio_kernels::dog_laplacian::{self, DogLaplacianBoundary, DogLaplacianInner};
+use folio_kernels::fix::Fix;
+use folio_kernels::glue::Glue;
+use folio_kernels::gravity::Gravity;
+use folio_kernels::iso2d::Iso2d;
+use folio_kernels::iso3d::Iso3d;
+use folio_kernels::positional::Positional;
+use folio_kernels::{KernelError, Real, Vec3Ops};
+
+use super::effects::Effects;
+use super::settings::BookSettings;
+use super::terms::{Contact, DogBoundary, DogInner, PlanarFix, Pull};
+use folio_solvers::model::{ConstraintSet, Model, PotentialSet, TermVisitor};
+
+/// Where each kind of node lives in the state (module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NodeMap {
+    /// Nodes per block midline, binding node included.
+    pub midline: usize,
+    /// Whether the two cover nodes exist.
+    pub cover: bool,
+    /// The active page's grid.
+    pub grid: QuadGrid,
+}
+
+impl NodeMap {
+    /// Node `k` of the left (`right = false`) or right block's midline, from the binding.
+    #[inline]
+    #[must_use]
+    pub fn block(&self, right: bool, k: usize) -> usize {
+        if right { self.midline + k } else { k }
+    }
+    /// The outer node of the left or right cover board (only with a cover).
+    #[inline]
+    #[must_use]
+    pub fn cover_end(&self, right: bool) -> usize {
+        2 * self.midline + usize::from(right)
+    }
+    /// First node of the active page.
+    #[inline]
+    #[must_use]
+    pub fn page_offset(&self) -> usize {
+        2 * self.midline + if self.cover { 2 } else { 0 }
+    }
+    /// Node of page vertex `(i, j)`.
+    #[inline]
+    #[must_use]
+    pub fn page(&self, i: usize, j: usize) -> usize {
+        self.page_offset() + self.grid.index(i, j)
+    }
+    /// All nodes.
+    #[inline]
+    #[must_use]
+    pub fn total(&self) -> usize {
+        self.page_offset() + self.grid.len()
+    }
+    /// `true` for a page node of the bound column.
+    #[inline]
+    #[must_use]
+    pub fn is_bound(&self, node: usize) -> bool {
+        node >= self.page_offset() && (node - self.page_offset()) % self.grid.nx == 0
+    }
+}
+
+/// The book's term families (see [`BookTerms::count`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Family {
+    /// Gravity on block, cover and page nodes (eq. 12).
+    Gravity,
+    /// The binding glue (eq. 11).
+    Glue,
+    /// Contact springs on block, cover and page nodes.
+    Contacts,
+    /// Curve-Laplacian bending of the block midlines (eq. 10).
+    BlockBending,
+    /// Inextensible block and cover links (eq. 6).
+    BlockLinks,
+    /// The binding-midpoint fix (eq. 8).
+    BindingFix,
+    /// DOG constraints of the page (Sec. 3.2).
+    Dog,
+    /// The bound column's binding (eq. 7).
+    Binding,
+    /// DOG-Laplacian bending of the page (eq. 9).
+    PageBending,
+    /// Soft isometry of the page (eq. 13).
+    PageIso,
+    /// The grab pulls (eq. 14).
+    Pull,
+}
+
+/// Every term of the book (seed eq. 5 and 9), built once; parameters (masses, $q$, the
+/// grab) change between steps through the `set_*` methods, stencils never do.
+#[derive(Clone, Debug)]
+pub struct BookTerms<T: Real> {
+    /// Node numbering.
+    pub nodes: NodeMap,
+    /// Mass of every node (page masses).
+    pub masses: Vec<T>,
+    /// The effects these terms simulate.
+    pub effects: Effects,
+    g: T,
+    iso2d: ConstraintSet<Iso2d<T>, 2>,
+    fix: ConstraintSet<PlanarFix<T>, 2>,
+    bend_blocks: PotentialSet<T, CurveLaplacian<T>, 3>,
+    glue: PotentialSet<T, Glue<T>, 4>,
+    block_gravity: PotentialSet<T, Gravity<T>, 1>,
+    /// DOG constraints on inner stars.
+    pub dog_inner: ConstraintSet<DogInner<T>, 5>,
+    /// DOG constraints on 3-neighbour boundary stars.
+    pub dog_boundary: ConstraintSet<DogBoundary<T>, 4>,
+    binding: ConstraintSet<Binding<T>, 3>,
+    bend_inner: PotentialSet<T, DogLaplacianInner<T>, 5>,
+    bend_boundary: PotentialSet<T, DogLaplacianBoundary<T>, 3>,
+    iso3d: PotentialSet<T, Iso3d<T>, 2>,
+    page_gravity: PotentialSet<T, Gravity<T>, 1>,
+    pull: PotentialSet<T, Pull<T>, 1>,
+    pull_nodes: Vec<usize>,
+    /// The weights of the page's bending, iso3D and pull for one page (see
+    /// [`BookTerms::set_stack`]).
+    page_weights: [T; 3],
+    /// One per block and cover node, in node order.
+    block_contacts: PotentialSet<T, Contact<T>, 1>,
+    /// One per page node, in grid order.
+    page_contacts: PotentialSet<T, Contact<T>, 1>,
+}
+
+fn as_u32<const N: usize>(nodes: [usize; N]) -> [u32; N] {
+    nodes.map(|k| k as u32)
+}
+
+impl<T: Real> BookTerms<T> {
+    /// The terms of the book `layout` with the page grid and weights of `settings`; page
+    /// spacing `spacing = [across, along]`.
+    ///
+    /// # Errors
+    /// A kernel parameter that cannot be used (a non-finite weight or mass, zero spacing).
+    pub fn new(
+        layout: &BookLayout,
+        settings: &BookSettings<T>,
+        grid: QuadGrid,
+    ) -> Result<Self, KernelError> {
+        let p = &layout.params;
+        let nodes = NodeMap {
+            midline: p.midline_nodes,
+            cover: p.cover,
+            grid,
+        };
+        let w = &settings.weights;
+        let m = nodes.midline;
+        let mut t = Self {
+            nodes,
+            masses: alloc::vec![T::ZERO; nodes.total()],
+            effects: settings.effects,
+            g: settings.gravity,
+            iso2d: ConstraintSet::new(),
+            fix: ConstraintSet::new(),
+            bend_blocks: PotentialSet::new(w.bend_blocks),
+            glue: PotentialSet::new(w.glue),
+            block_gravity: PotentialSet::new(T::ONE),
+            dog_inner: ConstraintSet::new(),
+            dog_boundary: ConstraintSet::new(),
+            binding: ConstraintSet::new(),
+            bend_inner: PotentialSet::new(w.bend_page),
+            bend_boundary: PotentialSet::new(w.bend_page),
+            iso3d: PotentialSet::new(w.iso_page * T::from_f64(settings.iso_scale())),
+            page_gravity: PotentialSet::new(T::ONE),
+            pull: PotentialSet::new(w.pull),
+            pull_nodes: Vec::new(),
+            page_weights: [
+                w.bend_page,
+                w.iso_page * T::from_f64(settings.iso_scale()),
+                w.pull,
+            ],
+            block_contacts: PotentialSet::new(T::ONE),
+            page_contacts: PotentialSet::new(T::ONE),
+        };
+        // Blocks: inextensible midlines (eq. 6), curve bending at inner nodes (eq. 10; the
+        // binding nodes are left to the glue), gravity (eq. 12).
+        let fx = settings.effects;
+        let seg = T::from_f64(p.page_width / (m - 1) as f64);
+        let block_rights: &[bool] = if fx.blocks { &[false, true] } else { &[] };
+        for &right in block_rights {
+            for k in 0..m - 1 {
+                let nodes = [t.nodes.block(right, k), t.nodes.block(right, k + 1)];
+                t.iso2d.push(Iso2d::new(seg)?, as_u32(nodes));
+            }
+            for k in 1..m - 1 {
+                let nodes = [k, k - 1, k + 1].map(|q| t.nodes.block(right, q));
+                t.bend_blocks
+                    .push(curve_laplacian::new([seg, seg])?, as_u32(nodes));
+            }
+        }
+        if fx.blocks {
+            let binding_width = T::from_f64(layout.binding[1][0] - layout.binding[0][0]);
+            t.iso2d.push(Iso2d::new(binding_width)?, as_u32([0, m]));
+            if p.cover {
+                let board = T::from_f64(p.page_width + p.cover_overhang);
+                for right in [false, true] {
+                    let nodes = [t.nodes.block(right, 0), t.nodes.cover_end(right)];
+                    t.iso2d.push(Iso2d::new(board)?, as_u32(nodes));
+                }
+            }
+            let mid = T::Vec3::new(
+                T::from_f64(0.5 * (layout.binding[0][0] + layout.binding[1][0])),
+                T::from_f64(layout.binding[0][1]),
+                T::ZERO,
+            );
+            t.fix.push(PlanarFix(Fix::new(mid)?), as_u32([0, m]));
+        }
+        if fx.glue && fx.blocks {
+            t.glue.push(Glue::new(), as_u32([1, 0, m, m + 1]));
+        }
+        if fx.gravity && fx.blocks {
+            for node in 0..t.nodes.page_offset() {
+                t.block_gravity
+                    .push(Gravity::new(t.g, T::ZERO)?, as_u32([node]));
+            }
+        }
+        // Active page: DOG constraints and DOG-Laplacian bending per star, binding of the
+        // bound column (eq. 7), iso3D on grid edges (eq. 13), gravity, the grab pull.
+        let spacing = [
+            T::from_f64(p.page_width / settings.quads_across as f64),
+            T::from_f64(p.page_height() / settings.quads_along as f64),
+        ];
+        let rest_of = |a: usize, b: usize| {
+            let (ga, gb) = (grid.coords(a), grid.coords(b));
+            if ga.1 == gb.1 { spacing[0] } else { spacing[1] }
+        };
+        let po = t.nodes.page_offset();
+        for star in grid.stars() {
+            match star {
+                Star::Inner(s) => {
+                    t.dog_inner
+                        .push(DogInner::default(), as_u32(s.map(|k| po + k)));
+                    let rest = [1, 2, 3, 4].map(|k| rest_of(s[0], s[k]));
+                    let lap = dog_laplacian::inner(rest)?;
+                    t.bend_inner.push(lap, as_u32(s.map(|k| po + k)));
+                }
+                Star::Boundary(s) => {
+                    t.dog_boundary
+                        .push(DogBoundary::default(), as_u32(s.map(|k| po + k)));
+                    let rest = [rest_of(s[0], s[1]), rest_of(s[0], s[3])];
+                    let lap = dog_laplacian::boundary(rest)?;
+                    t.bend_boundary
+                        .push(lap, as_u32([s[0], s[1], s[3]].map(|k| po + k)));
+                }
+                Star::Corner(_) => {}
+            }
+        }
+        for j in 0..grid.nz {
+            let node = t.nodes.page(0, j);
+            t.binding.push(Binding::new(T::HALF)?, as_u32([node, 0, m]));
+        }
+        for [a, b] in grid.edges() {
+            t.iso3d
+                .push(Iso3d::new(rest_of(a, b))?, as_u32([po + a, po + b]));
+        }
+        if fx.gravity {
+            for k in 0..grid.len() {
+                t.page_gravity
+                    .push(Gravity::new(t.g, T::ZERO)?, as_u32([po + k]));
+            }
+        }
+        for k in grid.second_ring() {
+            let pull = Pull {
+                kernel: Positional::new(T::Vec3::ZERO)?,
+                active: false,
+            };
+            t.pull.push(pull, as_u32([po + k]));
+            t.pull_nodes.push(po + k);
+        }
+        let off = Contact {
+            kernel: ContactPlane::new(
+                T::Vec3::ZERO,
+                T::Vec3::new(T::ZERO, T::ONE, T::ZERO),
+                T::ZERO,
+                T::ZERO,
+            )?,
+            active: false,
+        };
+        let contact_nodes = match (fx.collides(), fx.blocks) {
+            (false, _) => 0..0,
+            (true, true) => 0..t.nodes.total(),
+            (true, false) => po..t.nodes.total(),
+        };
+        for node in contact_nodes {
+            let set = if node < po {
+                &mut t.block_contacts
+            } else {
+                &mut t.page_contacts
+            };
+            set.push(off, as_u32([node]));
+        }
+        Ok(t)
+    }
+
+    /// The number of terms of `family`.
+    #[must_use]
+    pub fn count(&self, family: Family) -> usize {
+        match family {
+            Family::Gravity => self.block_gravity.terms().len() + self.page_gravity.terms().len(),
+            Family::Glue => self.glue.terms().len(),
+            Family::Contacts => {
+                self.block_contacts.terms().len() + self.page_contacts.terms().len()
+            }
+            Family::BlockBending => self.bend_blocks.terms().len(),
+            Family::BlockLinks => self.iso2d.terms().len(),
+            Family::BindingFix => self.fix.terms().len(),
+            Family::Dog => self.dog_inner.terms().len() + self.dog_boundary.terms().len(),
+            Family::Binding => self.binding.terms().len(),
+            Family::PageBending => self.bend_inner.terms().len() + self.bend_boundary.terms().len(),
+            Family::PageIso => self.iso3d.terms().len(),
+            Family::Pull => self.pull.terms().len(),
+        }
+    }
+
+    /// The mass of `node` (page masses).
+    #[must_use]
+    pub fn mass(&self, node: usize) -> T {
+        self.masses[node]
+    }
+
+    /// Sets the mass of `node` and its gravity term.
+    fn set_mass(&mut self, node: usize, mass: T) {
+        self.masses[node] = mass;
+    }
+
+    /// Spreads `left` and `right` block masses over their midlines, `cover` on each cover
+    /// node, and `page` over the page grid; updates the gravity terms.
+    pub fn set_masses(&mut self, left: T, right: T, cover: T, page: T) {
+        let n = self.nodes;
+        let per = |total: T, count: usize| total / T::from_f64(count as f64);
+        for k in 0..n.midline {
+            self.set_mass(n.block(false, k), per(left, n.midline));
+            self.set_mass(n.block(true, k), per(right, n.midline));
+        }
+        if n.cover {
+            self.set_mass(n.cover_end(false), cover);
+            self.set_mass(n.cover_end(true), cover);
+        }
+        for k in n.page_offset()..n.total() {
+            self.set_mass(k, per(page, n.grid.len()));
+        }
+        let g = self.g;
+        let masses = &self.masses;
+        for (kernel, &m) in self.block_gravity.kernels_mut().zip(masses.iter()) {
+            kernel.weight = g * m;
+        }
+        let po = n.page_offset();
+        for (kernel, &m) in self.page_gravity.kernels_mut().zip(masses[po..].iter()) {
+            kernel.weight = g * m;
+        }
+    }
+
+    /// Scales the active page's bending, isometry and pull weights for a stack of `pages`
+    /// pages (at least 1). Loose sheets slide over each other, so a stack of $k$ bends $k$
+    /// times as stiffly as one sheet (not $k^3$, as a glued board would), stretches $k$
+    /// times as stiffly, and weighs $k$ times as much ([`BookTerms::set_masses`]): every
+    /// term of the page's energy scales with $k$ and the stack moves as one page does
+    /// under the same grab. With the pull left at one page's weight, a 45-page stack sags
+    /// out of the grab under 45 pages of gravity and falls back.
+    pub fn set_stack(&mut self, pages: T) {
+        let [bend, iso, pull] = self.page_weights.map(|w| w * pages);
+        self.bend_inner.weight = bend;
+        self.bend_boundary.weight = bend;
+        self.iso3d.weight = iso;
+        self.pull.weight = pull;
+    }
+
+    /// Sets the binding parameter $q$ of the bound column (clamped to `[0, 1]`).
+    pub fn set_binding_parameter(&mut self, q: T) {
+        let q = folio_kernels::real::clamp_keep_nan(q, T::ZERO, T::ONE);
+        for b in self.binding.kernels_mut() {
+            b.q = q;
+        }
+    }
+
+    /// The nodes that can be grabbed (the page's second ring), in pull order.
+    #[must_use]
+    pub fn pull_nodes(&self) -> &[usize] {
+        &self.pull_nodes
+    }
+
+    /// Holds `node` at `target` (or releases every node with `None`).
+    pub fn set_pull(&mut self, held: Option<(usize, T::Vec3)>) {
+        for (kernel, &node) in self.pull.kernels_mut().zip(&self.pull_nodes) {
+            match held {
+                Some((h, target)) if h == node => {
+                    kernel.active = true;
+                    kernel.kernel.target = target;
+                }
+                _ => kernel.active = false,
+            }
+        }
+    }
+
+    /// Switches every contact spring off.
+    pub fn clear_contacts(&mut self) {
+        let sets = [&mut self.block_contacts, &mut self.page_contacts];
+        for kernel in sets.into_iter().flat_map(PotentialSet::kernels_mut) {
+            kernel.active = false;
+        }
+    }
+
+    /// Holds `node` against `plane` in the next steps, until [`BookTerms::clear_contacts`].
+    pub fn set_contact(&mut self, node: usize, plane: ContactPlane<T>) {
+        let po = self.nodes.page_offset();
+        let kernel = if node < po {
+            self.block_contacts.kernel_mut(node)
+        } else {
+            self.page_contacts.kernel_mut(node - po)
+        };
+        if let Some(kernel) = kernel {
+            kernel.kernel = plane;
+            kernel.active = true;
+        }
+    }
+
+    /// The target of the pull on `node`, if that node is held.
+    #[must_use]
+    pub fn pull_target(&self, node: usize) -> Option<T::Vec3> {
+        self.pull
+            .terms()
+            .iter()
+            .find(|t| t.nodes[0] as usize == node && t.kernel.active)
+            .map(|t| t.kernel.kernel.target)
+    }
+
+    /// Largest $\lvert C_{\mathrm{DOG}}\rvert$ over the page's stars at `x`.
+    #[must_use]
+    pub fn dog_residual(&self, x: &[T::Vec3]) -> T {
+        use folio_kernels::Constraint;
+        let mut worst = T::ZERO;
+        let mut note = |v: T| {
+            let a = folio_kernels::math::abs(v);
+            // A non-finite residual must show.
+            if a > worst || !a.is_finite() {
+                worst = a;
+            }
+        };
+        for t in self.dog_inner.terms() {
+            let local = t.nodes.map(|k| x[k as usize]);
+            t.kernel.value(&local).into_iter().for_each(&mut note);
+        }
+        for t in self.dog_boundary.terms() {
+            let local = t.nodes.map(|k| x[k as usize]);
+            t.kernel.value(&local).into_iter().for_each(&mut note);
+        }
+        worst
+    }
+}
+
+/// The blocks alone: every page node is eliminated and no page term is visited.
+#[derive(Clone, Copy, Debug)]
+pub struct RestView<'a, T: Real>(pub &'a BookTerms<T>);
+
+/// The blocks and the active page.
+#[derive(Clone, Copy, Debug)]
+pub struct ActiveView<'a, T: Real>(pub &'a BookTerms<T>);
+
+impl<T: Real> Model<T> for RestView<'_, T> {
+    fn topology_version(&self) -> u64 {
+        0
+    }
+    fn node_count(&self) -> usize {
+        self.0.nodes.total()
+    }
+    fn is_fixed(&self, node: usize, axis: usize) -> bool {
+        axis == 2 || node >= self.0.nodes.page_offset() || !self.0.effects.blocks
+    }
+    fn mass(&self, node: usize) -> T {
+        self.0.masses[node]
+    }
+    fn visit_terms<V: TermVisitor<T>>(&self, v: &mut V) {
+        visit_blocks(self.0, v);
+    }
+}
+
+impl<T: Real> Model<T> for ActiveView<'_, T> {
+    fn topology_version(&self) -> u64 {
+        0
+    }
+    fn node_count(&self) -> usize {
+        self.0.nodes.total()
+    }
+    fn is_fixed(&self, node: usize, axis: usize) -> bool {
+        let n = &self.0.nodes;
+        let block = node < n.page_offset();
+        (block && !self.0.effects.blocks) || (axis == 2 && (block || n.is_bound(node)))
+    }
+    fn mass(&self, node: usize) -> T {
+        self.0.masses[node]
+    }
+    fn visit_terms<V: TermVisitor<T>>(&self, v: &mut V) {
+        let t = self.0;
+        visit_blocks(t, v);
+        v.potentials(&t.bend_inner);
+        v.potentials(&t.bend_boundary);
+        v.potentials(&t.iso3d);
+        v.potentials(&t.page_gravity);
+        v.potentials(&t.pull);
+        v.potentials(&t.page_contacts);
+        v.constraints(&t.dog_inner);
+        v.constraints(&t.dog_boundary);
+        v.constraints(&t.binding);
+    }
+}
+
+fn visit_blocks<T: Real, V: TermVisitor<T>>(t: &BookTerms<T>, v: &mut V) {
+    v.potentials(&t.bend_blocks);
+    v.potentials(&t.glue);
+    v.potentials(&t.block_gravity);
+    v.potentials(&t.block_contacts);
+    v.constraints(&t.iso2d);
+    v.constraints(&t.fix);
+}

@@ -1,0 +1,196 @@
+//! The book's parameters: geometry, weights, masses, interaction and solver settings.
+//! Defaults are the seed's (`000_…` Sec. 5) where it gives them.
+
+use crate::BookParams;
+use folio_kernels::Real;
+
+use super::effects::Effects;
+use folio_solvers::settings::Settings;
+
+/// Weights of the potentials of seed `000_…` eq. 9-14 at the seed's 11x8 grid
+/// (dimensionless multipliers of the unweighted kernels).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Weights<T> {
+    /// $w_{\mathrm{bend3D}}$, DOG-Laplacian bending of the active page (120).
+    pub bend_page: T,
+    /// $w_{\mathrm{bend2D}}$, curve-Laplacian bending of the block midlines (200).
+    pub bend_blocks: T,
+    /// $w_{\mathrm{glue}}$, binding glue (600).
+    pub glue: T,
+    /// $w_{\mathrm{iso3D}}$, soft isometry of the active page (4000 at the 11x8 grid).
+    pub iso_page: T,
+    /// $w_{\mathrm{pos}}$, the grab pull (400).
+    pub pull: T,
+}
+
+impl<T: Real> Default for Weights<T> {
+    fn default() -> Self {
+        Self {
+            bend_page: T::from_f64(120.0),
+            bend_blocks: T::from_f64(200.0),
+            glue: T::from_f64(600.0),
+            iso_page: T::from_f64(4000.0),
+            pull: T::from_f64(400.0),
+        }
+    }
+}
+
+/// Everything that defines a simulated book.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BookSettings<T: Real> {
+    /// Page counts, page size and thickness, cover, midline resolution.
+    pub params: BookParams,
+    /// Quads of the active page across its width (from the binding to the fore-edge).
+    pub quads_across: usize,
+    /// Quads of the active page along the binding. The seed's 11x8 grid is read as 11 along
+    /// the binding and 8 across, which gives near-square cells on a $\sqrt 2$ page.
+    pub quads_along: usize,
+    /// Potential weights at the reference grid (see [`BookSettings::iso_scale`]).
+    pub weights: Weights<T>,
+    /// Gravitational acceleration (page units per s², along −Y).
+    pub gravity: T,
+    /// Linear air drag $c$ (1/s): before each step every velocity is divided by $1 + c h$
+    /// (the implicit update of $\dot v = -c v$). The seed names no damping; without it a
+    /// released page, whose weight is small next to its bending stiffness, swings about the
+    /// binding for many seconds, because implicit Euler at $h = 1/60$ s barely damps motions
+    /// of a few radians per second. Air drag is what stops a real page.
+    pub air_drag: T,
+    /// Mass of one page (page masses: 1).
+    pub page_mass: T,
+    /// Mass of each cover board's outer node (page masses).
+    pub cover_mass: T,
+    /// Smallest mass given to a block's midline (page masses), so that an empty block still
+    /// has a positive mass matrix. A block is never lighter than the active page or stack
+    /// either (see the book's mass update).
+    pub min_block_mass: T,
+    /// The grab's leash (page units): the pull (eq. 14) aims at most this far from the held
+    /// node, towards the user's target. A finger that runs ahead of the page otherwise asks
+    /// one Newton step to carry the page many cells at once, far outside its
+    /// linearization; the line search then cuts the step to a sliver every frame and the
+    /// page crawls further and further behind. Default 1 (two thirds of a grid cell).
+    pub pull_reach: T,
+    /// Tent height over the binding as a fraction of the grabbed node's distance from the
+    /// binding (see [`crate::interaction::Tent`]).
+    pub tent_height: T,
+    /// A released page merges when its fastest node has been slower than this (page units
+    /// per second) for `merge_frames` consecutive steps.
+    pub merge_speed: T,
+    /// See `merge_speed`.
+    pub merge_frames: u32,
+    /// After the step and the collision handling, the constraint projection
+    /// ([`folio_solvers::Solver::project_constraints`]) iterates until $\lVert C\rVert_\infty$ is at
+    /// most this (dimensionless for the DOG rows, page units for the others)...
+    pub constraint_tolerance: T,
+    /// ...or this many iterations ran (0 switches it off: the seed's plain step, which
+    /// leaves DOG residuals of a few 1e-2 while the page moves fast).
+    pub max_corrections: u32,
+    /// Contact spring stiffness per unit of node mass ($s^{-2}$): a node pushed out of a
+    /// block, the cover or the table in one step is held on that surface by a
+    /// [`folio_kernels::contact::ContactPlane`] spring of stiffness $k = s\,m$ in the next, so
+    /// that the step carries the contact force instead of re-penetrating by $F h^2 / m$
+    /// every frame (a resting node then sinks by $g / s$). 0 switches the springs off.
+    /// The springs hold for one step whatever the direction, so a node that should lift off
+    /// by less than the rounding noise of its coordinates ($\approx \varepsilon W$, $W$ the
+    /// page width) stays: the spring's adhesion $k\,\varepsilon W$ must be small next to the
+    /// node's weight $m g$, i.e. $s \ll g / (\varepsilon W)$. Default $10^6$ in `f64`
+    /// (adhesion $\approx 10^{-9}\,m g$) and $4 \cdot 10^4$ in `f32` ($\approx 0.006\,m g$;
+    /// at $10^6$ the f32 page sticks to its block and the page turn fails).
+    pub contact_stiffness: T,
+    /// Weight multiplier of the nodes a collision pushed in this step during the projection
+    /// (they stay on the surface that pushed them).
+    pub contact_pin_weight: T,
+    /// Collision detect/resolve rounds per step (the seed's "at most three times").
+    pub collision_rounds: u32,
+    /// Steps at construction to settle the blocks into their rest shape (the book stops
+    /// early once a step moves no node by more than `settle_tolerance`).
+    pub settle_steps: u32,
+    /// Page units; see `settle_steps`.
+    pub settle_tolerance: T,
+    /// Snapshots of the active page kept for finger-bookmarking (seed Fig. 11).
+    pub history_capacity: usize,
+    /// Steps between snapshots (doubling whenever the history is thinned).
+    pub history_interval: u32,
+    /// Steps a bookmarked page takes to fly between the block and the grip.
+    pub flip_frames: u32,
+    /// Pages that may be in flight at once.
+    pub max_flips: usize,
+    /// The time stepper's settings (time step, Newton iterations, line search, ...).
+    pub solver: Settings<T>,
+    /// The effects simulated (default: all; see [`Effects`]).
+    pub effects: Effects,
+}
+
+impl<T: Real> Default for BookSettings<T> {
+    fn default() -> Self {
+        Self {
+            params: BookParams::default(),
+            quads_across: 8,
+            quads_along: 11,
+            weights: Weights::default(),
+            gravity: T::from_f64(9.81),
+            air_drag: T::from_f64(3.0),
+            page_mass: T::ONE,
+            cover_mass: T::from_f64(5.0),
+            min_block_mass: T::HALF,
+            pull_reach: T::ONE,
+            tent_height: T::from_f64(0.6),
+            merge_speed: T::from_f64(0.5),
+            merge_frames: 10,
+            constraint_tolerance: T::from_f64(1e-4),
+            max_corrections: 3,
+            contact_pin_weight: T::from_f64(1e3),
+            contact_stiffness: T::from_f64(if T::EPSILON.to_f64() < 1e-10 {
+                1e6
+            } else {
+                4e4
+            }),
+            collision_rounds: 3,
+            settle_steps: 20_000,
+            settle_tolerance: T::from_f64(if T::EPSILON.to_f64() < 1e-10 {
+                1e-13
+            } else {
+                1e-6
+            }),
+            history_capacity: 32,
+            history_interval: 4,
+            flip_frames: 24,
+            max_flips: 8,
+            solver: Settings {
+                merit_slack: T::from_f64(0.05),
+                ..Settings::default()
+            },
+            effects: Effects::ALL,
+        }
+    }
+}
+
+impl<T: Real> BookSettings<T> {
+    /// The reference cell area: the seed's weights hold for an 8x11 grid on the default page.
+    fn reference_cell_area(&self) -> f64 {
+        let p = &self.params;
+        p.page_width * p.page_height() / (8.0 * 11.0)
+    }
+
+    /// The factor applied to $w_{\mathrm{iso3D}}$ for this grid: $A_0 / A$, the reference
+    /// cell area over this grid's. Per edge the iso3D energy of a uniform strain
+    /// $\varepsilon$ is $4\varepsilon^2 h^4$ and there are $\sim 2A_{page}/h^2$ edges, so the
+    /// sum scales with $h^2$; the factor makes the page's stretch stiffness independent of
+    /// the grid. Bending needs no factor: the DOG Laplacian divides by the rest lengths, so
+    /// its sum over a page bent with curvature $\kappa$ is $\approx A_{page}\kappa^2$ at any
+    /// resolution. Masses are the page mass spread over the nodes.
+    #[must_use]
+    pub fn iso_scale(&self) -> f64 {
+        let [across, along] = self.grid_spacing();
+        self.reference_cell_area() / (across * along)
+    }
+
+    /// The page grid's rest spacing `[across, along]` (page units).
+    #[must_use]
+    pub fn grid_spacing(&self) -> [f64; 2] {
+        let p = &self.params;
+        [
+            p.page_width / self.quads_across as f64,
+            p.page_height() / self.quads_along as f64,
+        ]
+    }
+}

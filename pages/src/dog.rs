@@ -1,0 +1,172 @@
+//! The most accurate page: the active page of the DOG book (seed `000_…`), turned from the
+//! right block of a [`Book`] by the finger of a touch script.
+//!
+//! **Frames.** The book's frame has the binding near $x = 0$ and the blocks on a cover
+//! board; the page frame of [`super`] is the book's shifted by the grabbed page's rest
+//! corner: $x_0$ of its bound column and $y_0$ of its fore-edge, so that the page lying on
+//! its block is near $\{(u, 0, v)\}$ (the block top rises from the binding, so the inner
+//! strip of the page sits below $y = 0$).
+//!
+//! **Input.** The grab holds the grab-ring node nearest the material point (the book lets
+//! the user hold only nodes one ring in from the border, seed Sec. 3.3); the finger drives
+//! that node's pull target shifted by the node's material offset from the grab point
+//! ($\Delta u$ along X, $\Delta v$ along Z), without the tent.
+//!
+//! **Output.** The page's surface at a render node is the bilinear interpolation of the DOG
+//! grid at its material point. After the page merges into a block, the page keeps the
+//! geometry it came to rest in (the book then simulates only its blocks).
+
+use alloc::vec::Vec;
+use folio_geometry::{BlockSide, QuadGrid};
+use folio_kernels::{Real, Vec3Ops};
+
+use super::{PageError, PageModel, PageStatus, PageStep, check_finger, check_grab, material_point};
+use folio_book::{Book, BookSettings, GrabOutcome};
+
+/// The DOG page (module docs).
+#[derive(Clone, Debug)]
+pub struct DogPage<T: Real> {
+    book: Book<T>,
+    /// Page-frame origin in the book frame (set at the grab).
+    origin: T::Vec3,
+    /// Finger offset of the held node: its material point minus the grab point (page frame).
+    offset: T::Vec3,
+    /// The page's node positions (page frame), kept after a merge.
+    nodes: Vec<T::Vec3>,
+    grid: QuadGrid,
+    spacing: [f64; 2],
+}
+
+impl<T: Real> DogPage<T> {
+    /// A book with `settings` whose right block's top page will be turned.
+    ///
+    /// # Errors
+    /// As [`Book::new`].
+    pub fn new(settings: BookSettings<T>) -> Result<Self, PageError> {
+        let book = Book::new(settings)?;
+        let grid = QuadGrid::new(settings.quads_across, settings.quads_along).ok_or(
+            PageError::InvalidInput {
+                what: "DOG page grid",
+            },
+        )?;
+        let spacing = book.grid_spacing();
+        let nodes = (0..grid.len())
+            .map(|k| {
+                let (i, j) = grid.coords(k);
+                T::Vec3::new(
+                    T::from_f64(i as f64 * spacing[0]),
+                    T::ZERO,
+                    T::from_f64(j as f64 * spacing[1]),
+                )
+            })
+            .collect();
+        Ok(Self {
+            book,
+            origin: T::Vec3::ZERO,
+            offset: T::Vec3::ZERO,
+            nodes,
+            grid,
+            spacing,
+        })
+    }
+
+    /// The book underneath.
+    #[must_use]
+    pub fn book(&self) -> &Book<T> {
+        &self.book
+    }
+
+    /// Copies the active page (page frame) into `nodes`, if there is one.
+    fn track(&mut self) {
+        if let Some(page) = self.book.page() {
+            for (out, &p) in self.nodes.iter_mut().zip(page) {
+                *out = p - self.origin;
+            }
+        }
+    }
+}
+
+impl<T: Real> PageModel<T> for DogPage<T> {
+    fn name(&self) -> &'static str {
+        "dog"
+    }
+
+    fn size(&self) -> [T; 2] {
+        let p = &self.book.layout().params;
+        [T::from_f64(p.page_width), T::from_f64(p.page_height())]
+    }
+
+    fn grab(&mut self, at: [T; 2]) -> Result<(), PageError> {
+        check_grab(at, self.size())?;
+        let at64 = [at[0].to_f64(), at[1].to_f64()];
+        let GrabOutcome::Grabbed { node, .. } = self.book.grab_at(BlockSide::Right, at64, 1)?
+        else {
+            return Err(PageError::InvalidInput {
+                what: "grab (no page left in the right block)",
+            });
+        };
+        let page = self.book.page().unwrap_or_default();
+        let g = self.grid;
+        if let (Some(corner), Some(edge)) = (page.first(), page.get(g.index(g.nx - 1, 0))) {
+            self.origin = T::Vec3::new(corner.x(), edge.y(), T::ZERO);
+        }
+        let (i, j) = g.coords(node);
+        self.offset = T::Vec3::new(
+            T::from_f64(i as f64 * self.spacing[0] - at64[0]),
+            T::ZERO,
+            T::from_f64(j as f64 * self.spacing[1] - at64[1]),
+        );
+        self.track();
+        Ok(())
+    }
+
+    fn drag(&mut self, finger: T::Vec3) -> Result<(), PageError> {
+        check_finger::<T>(finger)?;
+        self.book.drag_to(finger + self.offset + self.origin)?;
+        Ok(())
+    }
+
+    fn release(&mut self) {
+        self.book.release();
+    }
+
+    fn step(&mut self) -> Result<PageStep<T>, PageError> {
+        let report = self.book.step()?;
+        self.track();
+        let finger_gap = match (self.book.held_node(), self.book.target()) {
+            (Some(node), Some(target)) => self
+                .book
+                .page()
+                .map(|page| folio_kernels::math::length::<T>(page[node] - target)),
+            _ => None,
+        };
+        Ok(PageStep {
+            status: if report.solver.status.advanced() {
+                PageStatus::Moved
+            } else {
+                PageStatus::Stalled
+            },
+            finger_gap,
+        })
+    }
+
+    fn sample(&self, grid: QuadGrid, out: &mut [T::Vec3]) -> Result<(), PageError> {
+        super::check_count(grid.len(), out.len())?;
+        let g = self.grid;
+        let size = self.size();
+        for (k, p) in out.iter_mut().enumerate() {
+            let [u, v] = material_point(grid, size, k);
+            // Cell and local coordinates in the DOG grid.
+            let fu = u.to_f64() / self.spacing[0];
+            let fv = v.to_f64() / self.spacing[1];
+            let i = (fu as usize).min(g.nx - 2);
+            let j = (fv as usize).min(g.nz - 2);
+            let (a, b) = (T::from_f64(fu - i as f64), T::from_f64(fv - j as f64));
+            let at = |i: usize, j: usize| self.nodes[g.index(i, j)];
+            let bottom = at(i, j) * (T::ONE - a) + at(i + 1, j) * a;
+            let top = at(i, j + 1) * (T::ONE - a) + at(i + 1, j + 1) * a;
+            *p = bottom * (T::ONE - b) + top * b;
+        }
+        Ok(())
+    }
+}

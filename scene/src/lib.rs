@@ -1,0 +1,20 @@
+//! # folio-scene
+//!
+//! Folio's scene files (TOML, `docs/scenes.md`): the scene types and their validation with
+//! line and column ([`scene`]), the timed events and hands that drive a run ([`events`],
+//! [`hands`]), the recorded fixtures and built-in scenes they name ([`fixtures`],
+//! [`builtin`]), the model settings a scene describes ([`settings`]) and the tearing sheet of
+//! a sheet scene ([`sheet`]).
+//!
+//! Layers: the models (`folio-book`, `folio-pages`, `folio-tearing`) below; the `folio`
+//! command and the C API (`folio-capi`) above, both reading scenes through this crate.
+
+extern crate alloc;
+
+pub mod builtin;
+pub mod events;
+pub mod fixtures;
+pub mod hands;
+pub mod scene;
+pub mod settings;
+pub mod sheet;

@@ -1,0 +1,736 @@
+//! Scene files: TOML, read with serde (the format is documented in `docs/scenes.md`).
+//! Every error names its line and column; a scene that does not check is never run.
+
+use core::ops::Range;
+use serde::Deserialize;
+use toml::Spanned;
+
+/// A scene: which page model, which book or page, which input, for how long.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Short name (file names, reports).
+    pub name: String,
+    /// One line for `folio list`.
+    #[serde(default)]
+    pub description: String,
+    /// The page model.
+    pub model: Spanned<ModelKind>,
+    /// Frames to run (60 per second); default: the input's own length.
+    pub frames: Option<Spanned<u32>>,
+    /// The effects to simulate (default: every effect the model has; see
+    /// [`ModelKind::effects`]). An effect left out contributes no term and no work.
+    pub effects: Option<Spanned<Vec<Spanned<String>>>>,
+    /// The book around a DOG page (`model = "dog"` only).
+    pub book: Option<Spanned<BookSection>>,
+    /// The sheet of a tearing scene (`model = "sheet"` only).
+    pub sheet: Option<Spanned<SheetSection>>,
+    /// The tearing step's parameters (`model = "sheet"` only).
+    pub tearing: Option<Spanned<TearingSection>>,
+    /// Potential weights of the DOG book (`model = "dog"` only).
+    pub weights: Option<Spanned<WeightsSection>>,
+    /// Time step and solver settings.
+    pub solver: Option<Spanned<SolverSection>>,
+    /// The input: a recorded fixture or timed events.
+    pub input: Spanned<InputSection>,
+    /// What `folio run` writes.
+    #[serde(default)]
+    pub output: OutputSection,
+
+    /// What the run must show; `folio run` fails when it does not.
+    #[serde(default)]
+    pub expect: Expect,
+}
+
+/// A scene's stated expectations, checked against the run's summary.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Expect {
+    /// Pages left, right and held at the end (DOG book).
+    pub final_pages: Option<[u32; 3]>,
+    /// Upper bound on the mean max edge stretch.
+    pub max_stretch_mean: Option<f64>,
+    /// Upper bound on the mean RMSE edge stretch.
+    pub rmse_stretch_mean: Option<f64>,
+    /// Upper bound on the DOG residual after any step.
+    pub dog_residual_max: Option<f64>,
+    /// Upper bound on the penetration into a block after collision handling.
+    pub penetration_max: Option<f64>,
+    /// Most frames whose step failed (`Stalled`, a failed line search or factorization).
+    pub failed_steps: Option<usize>,
+    /// Lower bound on the length of the longest tear in the pattern (sheet units; sheet).
+    pub tear_length_min: Option<Spanned<f64>>,
+    /// Why the first tear started (sheet): `"inward-angle"`, `"junction"`, `"finger"`.
+    pub tear_start: Option<Spanned<TearStart>>,
+}
+
+/// The kind of potential tearing point a tear starts at (seed `002_…` Sec. 4.1).
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum TearStart {
+    /// A boundary vertex with an inward angle (a notch).
+    InwardAngle,
+    /// A junction point of flat and curved regions.
+    Junction,
+    /// A finger, or the boundary vertex nearest to one.
+    Finger,
+}
+
+impl TearStart {
+    /// The name used in scene files and reports.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::InwardAngle => "inward-angle",
+            Self::Junction => "junction",
+            Self::Finger => "finger",
+        }
+    }
+}
+
+/// The page models (issue 5's interface).
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum ModelKind {
+    /// The DOG book of seed 000 (page blocks, cover, active page).
+    Dog,
+    /// The cone curl of seed 001.
+    Cone,
+    /// The mass-spring page of seed 003.
+    MassSpring,
+    /// The tearing sheet of seed 002, held and pulled by hands.
+    Sheet,
+}
+
+/// Every effect a scene may name.
+pub const EFFECTS: [&str; 9] = [
+    "gravity",
+    "glue",
+    "collisions",
+    "cover",
+    "blocks",
+    "bookmarking",
+    "bending",
+    "cones",
+    "tearing",
+];
+
+impl ModelKind {
+    /// The name used in scene files and reports.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Dog => "dog",
+            Self::Cone => "cone",
+            Self::MassSpring => "mass-spring",
+            Self::Sheet => "sheet",
+        }
+    }
+
+    /// The effects the model can simulate (its default set).
+    #[must_use]
+    pub fn effects(self) -> &'static [&'static str] {
+        match self {
+            Self::Dog => &[
+                "gravity",
+                "glue",
+                "collisions",
+                "cover",
+                "blocks",
+                "bookmarking",
+            ],
+            Self::Cone => &[],
+            Self::MassSpring => &["gravity", "collisions"],
+            Self::Sheet => &["gravity", "bending", "cones", "tearing"],
+        }
+    }
+}
+
+/// The book of a DOG scene (seed 000 Sec. 3.1); omitted keys take the seed's defaults.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BookSection {
+    /// Pages in the book.
+    pub pages: Option<Spanned<u32>>,
+    /// Pages in the left block at the start.
+    pub left_pages: Option<Spanned<u32>>,
+    /// Page width (page units; the seed's is 12).
+    pub page_width: Option<Spanned<f64>>,
+    /// Paper thickness (page units).
+    pub thickness: Option<Spanned<f64>>,
+}
+
+/// The DOG book's potential weights (seed `000_…` eq. 9-14); omitted keys keep the seed's.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WeightsSection {
+    /// DOG-Laplacian bending of the page (120).
+    pub bend_page: Option<Spanned<f64>>,
+    /// Curve bending of the blocks (200).
+    pub bend_blocks: Option<Spanned<f64>>,
+    /// Binding glue (600).
+    pub glue: Option<Spanned<f64>>,
+    /// Soft isometry of the page (4000 at the seed's grid).
+    pub iso_page: Option<Spanned<f64>>,
+    /// The grab pull (400).
+    pub pull: Option<Spanned<f64>>,
+}
+
+/// The sheet of a tearing scene (seed `002_…`; `folio_tearing::sheet::SheetSettings`);
+/// omitted keys keep the sheet's defaults. Lengths in sheet units.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SheetSection {
+    /// Pattern width (12).
+    pub width: Option<Spanned<f64>>,
+    /// Pattern height (9).
+    pub height: Option<Spanned<f64>>,
+    /// Quads across, two triangles each (8).
+    pub nx: Option<Spanned<u32>>,
+    /// Quads up (6).
+    pub ny: Option<Spanned<u32>>,
+    /// A slit cut before the run: a polyline of grid vertices from a point on the border,
+    /// each segment along a grid line or a quad's diagonal.
+    pub notch: Option<Spanned<Vec<Spanned<[f64; 2]>>>>,
+    /// 2D Young's modulus of the membrane (force per sheet unit; 0.003).
+    pub stretch_modulus: Option<Spanned<f64>>,
+    /// Poisson's ratio in [0, 0.5) (0.3).
+    pub poisson: Option<Spanned<f64>>,
+    /// Weight of the hinge bending energy (1e-5).
+    pub bending: Option<Spanned<f64>>,
+    /// Mass per pattern area (1e-8).
+    pub density: Option<Spanned<f64>>,
+    /// Gravitational acceleration along -y when `gravity` is simulated (9.81).
+    pub gravity: Option<Spanned<f64>>,
+    /// Propagations per frame at most (2).
+    pub max_propagations: Option<Spanned<u32>>,
+}
+
+/// The tearing step's parameters (seed `002_…` eq. 1-7; `folio_tearing::TearSettings`);
+/// omitted keys keep the defaults.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TearingSection {
+    /// Paper thickness $e$ of eq. 6 (sheet units; 0.01).
+    pub thickness: Option<Spanned<f64>>,
+    /// The material constant $c$ of eq. 3 (0.005).
+    pub fracture: Option<Spanned<f64>>,
+    /// Damage $D$ at tear tips, eq. 3 (0.5).
+    pub damage: Option<Spanned<f64>>,
+    /// Propagation speed: sheet units per unit of release rate (50).
+    pub speed: Option<Spanned<f64>>,
+    /// Shortest propagation step (sheet units; 0.05).
+    pub min_step: Option<Spanned<f64>>,
+    /// Longest propagation step (sheet units; 0.6).
+    pub max_step: Option<Spanned<f64>>,
+    /// Turn (radians) above which the tip splits into two lips (0.1).
+    pub turn_threshold: Option<Spanned<f64>>,
+    /// Snap distance of new vertices, relative to the triangle's longest edge (0.12).
+    pub snap: Option<Spanned<f64>>,
+    /// Alpha texture pixels per sheet unit (32).
+    pub texture_density: Option<Spanned<f64>>,
+    /// Seed of the fiber texture.
+    pub fiber_seed: Option<Spanned<u64>>,
+    /// Weight of the stress field against the fibers in the detail path, eq. 7 (0.8).
+    pub detail_weight: Option<Spanned<f64>>,
+    /// Width $\sigma$ of the detail path's stress field (sheet units; 0.1).
+    pub detail_sigma: Option<Spanned<f64>>,
+}
+
+/// Time step and solver settings; omitted keys keep the model's defaults.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSection {
+    /// Time step (seconds; DOG and mass-spring).
+    pub time_step: Option<Spanned<f64>>,
+    /// Newton iterations per step (DOG; the seed's one).
+    pub newton_iterations: Option<Spanned<u32>>,
+    /// Constraint projection iterations after a step (DOG; 0 is the seed's plain step).
+    pub max_corrections: Option<Spanned<u32>>,
+    /// Substeps per frame (mass-spring).
+    pub substeps: Option<Spanned<u32>>,
+}
+
+/// The input of a scene: a named recorded fixture, or timed events.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InputSection {
+    /// One of [`crate::fixtures::NAMES`].
+    pub fixture: Option<Spanned<String>>,
+    /// Pages every grab of a book fixture takes (a stack; default: the fixture's own).
+    pub pages: Option<Spanned<u32>>,
+    /// Timed events: one gesture (a grab, drags, a release) in page coordinates.
+    pub events: Option<Spanned<Vec<Spanned<EventSpec>>>>,
+    /// The hands holding a sheet (`model = "sheet"` only).
+    pub hands: Option<Spanned<Vec<Spanned<HandSpec>>>>,
+}
+
+/// One hand holding the sheet (`[[input.hands]]`): its fingers pinch the sheet at the
+/// start, move with the hand as one rigid body, and let go together.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HandSpec {
+    /// The pattern points `[u, v]` (sheet units) the fingers pinch, one or more.
+    pub fingers: Spanned<Vec<Spanned<[f64; 2]>>>,
+    /// How the hand moves: segments in time order, the hand still between them.
+    #[serde(default)]
+    pub moves: Vec<Spanned<MoveSpec>>,
+    /// When the hand lets go (seconds; default: it holds to the end).
+    pub release: Option<Spanned<f64>>,
+}
+
+/// One segment of a hand's motion (`moves = [{ ... }]`): from `start` to `end` the hand
+/// translates at `velocity` and turns at `spin` about its centre (the mean of its
+/// fingers, moving with it).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MoveSpec {
+    /// Start (seconds).
+    pub start: Spanned<f64>,
+    /// End (seconds; default: the end of the run).
+    pub end: Option<Spanned<f64>>,
+    /// Velocity `[x, y, z]` (sheet units per second; x along u, y along v, z out of the
+    /// flat sheet).
+    pub velocity: Option<Spanned<[f64; 3]>>,
+    /// Angular velocity `[x, y, z]` (radians per second, right-handed about the axis).
+    pub spin: Option<Spanned<[f64; 3]>>,
+}
+
+/// One timed input event (`[[input.events]]`): when (`frame` or `time`) and what (`grab`,
+/// `drag` or `release`).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EventSpec {
+    /// The frame (60 per second) before whose step the event applies.
+    pub frame: Option<Spanned<u32>>,
+    /// The same in seconds (rounded to the nearest frame).
+    pub time: Option<Spanned<f64>>,
+    /// Grab the page at material point `[u, v]` (page units: across from the spine, along
+    /// it) of the right page.
+    pub grab: Option<Spanned<[f64; 2]>>,
+    /// The finger reaches `[x, y, z]` (page frame: x across the book from the spine, y up,
+    /// z along the spine) at this frame, moving in a straight line from where it was.
+    pub drag: Option<Spanned<[f64; 3]>>,
+    /// Let go (`release = true`).
+    pub release: Option<Spanned<bool>>,
+}
+
+/// What a run writes into its output folder.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSection {
+    /// Write `report.json`.
+    #[serde(default = "yes")]
+    pub report: bool,
+    /// Write `contact_sheet.png`.
+    #[serde(default = "yes")]
+    pub contact_sheet: bool,
+    /// Tiles on the contact sheet, spread evenly over the run (1 to 256; default 16).
+    pub sheet_tiles: Option<Spanned<u32>>,
+    /// Write `animation.glb`.
+    #[serde(default = "yes")]
+    pub animation: bool,
+    /// Frames between two frames of the animation (1 to 1000; default 5).
+    pub animation_every: Option<Spanned<u32>>,
+    /// Write `timeline.svg`.
+    #[serde(default = "yes")]
+    pub timeline: bool,
+    /// Write the torn sheet's mesh `torn_sheet.obj` (sheet; default true).
+    pub mesh: Option<Spanned<bool>>,
+    /// Write every tear's alpha textures `tear-K-left.png`, `tear-K-right.png` (sheet;
+    /// default true).
+    pub textures: Option<Spanned<bool>>,
+    /// Write the picture of the last frame `torn_sheet.png` (sheet; default true).
+    pub picture: Option<Spanned<bool>>,
+}
+
+impl Default for OutputSection {
+    fn default() -> Self {
+        Self {
+            report: true,
+            contact_sheet: true,
+            sheet_tiles: None,
+            animation: true,
+            animation_every: None,
+            timeline: true,
+            mesh: None,
+            textures: None,
+            picture: None,
+        }
+    }
+}
+
+impl OutputSection {
+    /// Tiles on the contact sheet.
+    #[must_use]
+    pub fn tiles(&self) -> u32 {
+        self.sheet_tiles.as_ref().map_or(16, |v| *v.get_ref())
+    }
+
+    /// Frames between two animation frames.
+    #[must_use]
+    pub fn every(&self) -> u32 {
+        self.animation_every.as_ref().map_or(5, |v| *v.get_ref())
+    }
+
+    /// Whether a sheet run writes its torn mesh, its tear textures and its picture.
+    #[must_use]
+    pub fn sheet_files(&self) -> [bool; 3] {
+        [&self.mesh, &self.textures, &self.picture].map(|v| v.as_ref().is_none_or(|v| *v.get_ref()))
+    }
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// Why a scene does not check: a message at a line and column (1-based).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SceneError {
+    /// 1-based line (0 when the error has no place in the file).
+    pub line: usize,
+    /// 1-based column.
+    pub column: usize,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl core::fmt::Display for SceneError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        if self.line == 0 {
+            write!(f, "{}", self.message)
+        } else {
+            write!(
+                f,
+                "line {}, column {}: {}",
+                self.line, self.column, self.message
+            )
+        }
+    }
+}
+
+impl core::error::Error for SceneError {}
+
+impl SceneError {
+    /// An error at byte range `span` of `text`.
+    #[must_use]
+    pub fn at(text: &str, span: Option<Range<usize>>, message: impl Into<String>) -> Self {
+        let (line, column) = span.map_or((0, 0), |s| line_column(text, s.start));
+        Self {
+            line,
+            column,
+            message: message.into(),
+        }
+    }
+}
+
+/// 1-based line and column of byte `offset` in `text`.
+#[must_use]
+pub fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, column)
+}
+
+impl Scene {
+    /// Parses and checks `text` (module docs).
+    ///
+    /// # Errors
+    /// The first problem, at its line and column: TOML syntax, an unknown key or model, a
+    /// wrong type, a value out of range, an input that does not fit the model.
+    pub fn parse(text: &str) -> Result<Self, SceneError> {
+        let scene: Self = toml::from_str(text)
+            .map_err(|e| SceneError::at(text, e.span(), e.message().trim().to_string()))?;
+        scene.check(text)?;
+        Ok(scene)
+    }
+
+    fn check(&self, text: &str) -> Result<(), SceneError> {
+        let bad =
+            |span: Range<usize>, message: &str| Err(SceneError::at(text, Some(span), message));
+        if let Some(f) = &self.frames {
+            if !(1..=1_000_000).contains(f.get_ref()) {
+                return bad(f.span(), "frames must be between 1 and 1000000");
+            }
+        }
+        let model = *self.model.get_ref();
+        self.check_input(text, model)?;
+        self.check_effects(text, model)?;
+        self.check_settings(text, model)?;
+        if model == ModelKind::Sheet {
+            crate::sheet::check(self)
+                .map_err(|(span, message)| SceneError::at(text, Some(span), message))?;
+        } else {
+            self.check_not_sheet(text)?;
+        }
+        let o = &self.output;
+        if let Some(v) = &o.sheet_tiles {
+            if !(1..=256).contains(v.get_ref()) {
+                return bad(v.span(), "output.sheet_tiles must be between 1 and 256");
+            }
+        }
+        if let Some(v) = &o.animation_every {
+            if !(1..=1000).contains(v.get_ref()) {
+                return bad(
+                    v.span(),
+                    "output.animation_every must be between 1 and 1000",
+                );
+            }
+        }
+        if let Some(book) = &self.book {
+            if model != ModelKind::Dog {
+                return bad(book.span(), "[book] is for model = \"dog\" only");
+            }
+            let b = book.get_ref();
+            if let Some(p) = &b.pages {
+                if !(1..=100_000).contains(p.get_ref()) {
+                    return bad(p.span(), "pages must be between 1 and 100000");
+                }
+            }
+            if let (Some(l), pages) = (
+                &b.left_pages,
+                b.pages.as_ref().map_or(100, |p| *p.get_ref()),
+            ) {
+                if *l.get_ref() > pages {
+                    return bad(l.span(), "left_pages must be at most pages");
+                }
+            }
+            for v in [&b.page_width, &b.thickness].into_iter().flatten() {
+                let x = *v.get_ref();
+                if !(x.is_finite() && x > 0.0) {
+                    return bad(v.span(), "must be finite and > 0");
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Refuses the keys of the sheet model in a scene of another model.
+    fn check_not_sheet(&self, text: &str) -> Result<(), SceneError> {
+        let (o, e) = (&self.output, &self.expect);
+        let spans = [
+            ("[sheet]", self.sheet.as_ref().map(Spanned::span)),
+            ("[tearing]", self.tearing.as_ref().map(Spanned::span)),
+            ("output.mesh", o.mesh.as_ref().map(Spanned::span)),
+            ("output.textures", o.textures.as_ref().map(Spanned::span)),
+            ("output.picture", o.picture.as_ref().map(Spanned::span)),
+            (
+                "expect.tear_length_min",
+                e.tear_length_min.as_ref().map(Spanned::span),
+            ),
+            (
+                "expect.tear_start",
+                e.tear_start.as_ref().map(Spanned::span),
+            ),
+        ];
+        match spans.into_iter().find_map(|(key, span)| Some((key, span?))) {
+            Some((key, span)) => Err(SceneError::at(
+                text,
+                Some(span),
+                format!("{key} is for model = \"sheet\" only"),
+            )),
+            None => Ok(()),
+        }
+    }
+
+    /// The page size `[width, height]` (page units): every model's page is
+    /// $W \times W\sqrt 2$, $W$ = `book.page_width` (default 12).
+    #[must_use]
+    pub fn page_size(&self) -> [f64; 2] {
+        let w = self
+            .book
+            .as_ref()
+            .and_then(|b| b.get_ref().page_width.as_ref())
+            .map_or(12.0, |w| *w.get_ref());
+        [w, w * core::f64::consts::SQRT_2]
+    }
+
+    /// The effects the run simulates: the scene's list, else every effect of the model.
+    #[must_use]
+    pub fn effect_names(&self) -> Vec<String> {
+        match &self.effects {
+            Some(list) => list.get_ref().iter().map(|e| e.get_ref().clone()).collect(),
+            None => self
+                .model
+                .get_ref()
+                .effects()
+                .iter()
+                .map(|e| (*e).to_string())
+                .collect(),
+        }
+    }
+
+    /// `true` when the run simulates `effect`.
+    #[must_use]
+    pub fn has_effect(&self, effect: &str) -> bool {
+        self.effect_names().iter().any(|e| e == effect)
+    }
+
+    fn check_effects(&self, text: &str, model: ModelKind) -> Result<(), SceneError> {
+        let Some(list) = &self.effects else {
+            return Ok(());
+        };
+        let mut seen: Vec<&str> = Vec::new();
+        for e in list.get_ref() {
+            let name = e.get_ref().as_str();
+            let message = if !EFFECTS.contains(&name) {
+                format!("unknown effect `{name}`; known: {}", EFFECTS.join(", "))
+            } else if !model.effects().contains(&name) {
+                let has = model.effects();
+                format!(
+                    "the {} model does not simulate `{name}` (it has: {})",
+                    model.name(),
+                    if has.is_empty() {
+                        "none".to_string()
+                    } else {
+                        has.join(", ")
+                    }
+                )
+            } else if seen.contains(&name) {
+                format!("effect `{name}` named twice")
+            } else if name == "glue" && !self.has_effect("blocks") {
+                "`glue` joins the two blocks: it needs `blocks`".to_string()
+            } else {
+                seen.push(name);
+                continue;
+            };
+            return Err(SceneError::at(text, Some(e.span()), message));
+        }
+        Ok(())
+    }
+
+    fn check_settings(&self, text: &str, model: ModelKind) -> Result<(), SceneError> {
+        let bad =
+            |span: Range<usize>, message: &str| Err(SceneError::at(text, Some(span), message));
+        if let Some(w) = &self.weights {
+            if model != ModelKind::Dog {
+                return bad(w.span(), "[weights] is for model = \"dog\" only");
+            }
+            let w = w.get_ref();
+            let all = [&w.bend_page, &w.bend_blocks, &w.glue, &w.iso_page, &w.pull];
+            for v in all.into_iter().flatten() {
+                if !(v.get_ref().is_finite() && *v.get_ref() >= 0.0 && *v.get_ref() <= 1e9) {
+                    return bad(v.span(), "a weight must be in [0, 1e9]");
+                }
+            }
+        }
+        let Some(section) = &self.solver else {
+            return Ok(());
+        };
+        if model == ModelKind::Cone {
+            return bad(
+                section.span(),
+                "[solver] is for the dog, mass-spring and sheet models",
+            );
+        }
+        let s = section.get_ref();
+        if let Some(h) = &s.time_step {
+            if !(h.get_ref().is_finite() && *h.get_ref() > 0.0 && *h.get_ref() <= 0.1) {
+                return bad(h.span(), "time_step must be in (0, 0.1] seconds");
+            }
+        }
+        let dog_only = [
+            ("newton_iterations", &s.newton_iterations, 1..=20),
+            ("max_corrections", &s.max_corrections, 0..=50),
+        ];
+        for (name, v, range) in dog_only {
+            let Some(v) = v else { continue };
+            if model != ModelKind::Dog {
+                return bad(
+                    v.span(),
+                    &format!("solver.{name} is for model = \"dog\" only"),
+                );
+            }
+            if !range.contains(v.get_ref()) {
+                let (lo, hi) = (range.start(), range.end());
+                return bad(
+                    v.span(),
+                    &format!("solver.{name} must be between {lo} and {hi}"),
+                );
+            }
+        }
+        if let Some(v) = &s.substeps {
+            if model != ModelKind::MassSpring {
+                return bad(
+                    v.span(),
+                    "solver.substeps is for model = \"mass-spring\" only",
+                );
+            }
+            if !(1..=64).contains(v.get_ref()) {
+                return bad(v.span(), "solver.substeps must be between 1 and 64");
+            }
+        }
+        Ok(())
+    }
+
+    fn check_input(&self, text: &str, model: ModelKind) -> Result<(), SceneError> {
+        let bad =
+            |span: Range<usize>, message: &str| Err(SceneError::at(text, Some(span), message));
+        let input = self.input.get_ref();
+        if model == ModelKind::Sheet {
+            let given = [
+                input.fixture.as_ref().map(Spanned::span),
+                input.events.as_ref().map(Spanned::span),
+                input.pages.as_ref().map(Spanned::span),
+            ];
+            if let Some(span) = given.into_iter().flatten().next() {
+                return bad(
+                    span,
+                    "a sheet is held by [[input.hands]], not a fixture or events",
+                );
+            }
+            return match &input.hands {
+                Some(_) => Ok(()),
+                None => bad(self.input.span(), "a sheet scene needs [[input.hands]]"),
+            };
+        }
+        if let Some(hands) = &input.hands {
+            return bad(hands.span(), "input.hands is for model = \"sheet\" only");
+        }
+        let fixture = match (&input.fixture, &input.events) {
+            (Some(f), None) => f,
+            (None, Some(events)) => {
+                if let Some(pages) = &input.pages {
+                    return bad(pages.span(), "input.pages is for book fixtures only");
+                }
+                return crate::events::check(events, self.page_size())
+                    .map_err(|(span, message)| SceneError::at(text, Some(span), message));
+            }
+            _ => {
+                return bad(
+                    self.input.span(),
+                    "input needs either `fixture` or `events`, not both",
+                );
+            }
+        };
+        match crate::fixtures::kind(fixture.get_ref()) {
+            None => {
+                let names = crate::fixtures::NAMES.join(", ");
+                return bad(fixture.span(), &format!("unknown fixture; known: {names}"));
+            }
+            Some(crate::fixtures::Kind::Book) if model != ModelKind::Dog => {
+                return bad(
+                    fixture.span(),
+                    "a book fixture (camera rays on the whole book) needs model = \"dog\"",
+                );
+            }
+            Some(_) if fixture.get_ref() == "seed003-turn" && model == ModelKind::Dog => {
+                return bad(
+                    fixture.span(),
+                    "seed003-turn is on seed 003's 25 x 25 page; the DOG book's page is 12 wide",
+                );
+            }
+            Some(_) => {}
+        }
+        if let Some(pages) = &input.pages {
+            if crate::fixtures::kind(fixture.get_ref()) != Some(crate::fixtures::Kind::Book) {
+                return bad(pages.span(), "input.pages is for book fixtures only");
+            }
+            if *pages.get_ref() == 0 {
+                return bad(pages.span(), "input.pages must be at least 1");
+            }
+        }
+        Ok(())
+    }
+}

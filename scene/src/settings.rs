@@ -1,0 +1,141 @@
+//! The solver settings a scene describes: the DOG book's (book, effects, weights, solver),
+//! the mass-spring page's (effects, solver) and the tearing sheet's (sheet, tearing,
+//! effects, solver). Shared by the `folio` command and the C API's scene constructor.
+
+use folio_book::BookParams;
+use folio_book::{BookSettings, Effects};
+use folio_kernels::Real;
+use folio_pages::spring::SpringSettings;
+use folio_tearing::sheet::{SheetEffects, SheetSettings};
+
+use crate::scene::Scene;
+
+/// The book settings of a DOG scene in precision `T`: its book, effects, weights and
+/// solver settings (the rest are the book's defaults in `T`).
+#[must_use]
+pub fn book_settings<T: Real>(scene: &Scene) -> BookSettings<T> {
+    let mut s = BookSettings::default();
+    if let Some(book) = &scene.book {
+        let b = book.get_ref();
+        let p: &mut BookParams = &mut s.params;
+        if let Some(v) = &b.pages {
+            p.total_pages = *v.get_ref();
+            p.left_pages = p.total_pages / 2;
+        }
+        if let Some(v) = &b.left_pages {
+            p.left_pages = *v.get_ref();
+        }
+        set(&mut p.page_width, b.page_width.as_ref());
+        set(&mut p.page_thickness, b.thickness.as_ref());
+    }
+    s.params.cover = scene.has_effect("cover");
+    s.effects = Effects::NONE;
+    for name in scene.effect_names() {
+        // `cover` is geometry (above); the scene check refused every unknown name.
+        s.effects.enable(&name);
+    }
+    if let Some(w) = &scene.weights {
+        let w = w.get_ref();
+        set_real(&mut s.weights.bend_page, w.bend_page.as_ref());
+        set_real(&mut s.weights.bend_blocks, w.bend_blocks.as_ref());
+        set_real(&mut s.weights.glue, w.glue.as_ref());
+        set_real(&mut s.weights.iso_page, w.iso_page.as_ref());
+        set_real(&mut s.weights.pull, w.pull.as_ref());
+    }
+    if let Some(solver) = &scene.solver {
+        let v = solver.get_ref();
+        set_real(&mut s.solver.time_step, v.time_step.as_ref());
+        set(
+            &mut s.solver.newton_iterations,
+            v.newton_iterations.as_ref(),
+        );
+        set(&mut s.max_corrections, v.max_corrections.as_ref());
+    }
+    s
+}
+
+/// The mass-spring settings of a scene: seed 003's experiment on its fixture, else the
+/// defaults; its effects (gravity, the table) and solver settings.
+#[must_use]
+pub fn spring_settings(scene: &Scene, seed: bool) -> SpringSettings<f64> {
+    let mut s = if seed {
+        SpringSettings::seed_experiment()
+    } else {
+        SpringSettings::default()
+    };
+    if !scene.has_effect("gravity") {
+        s.particle_weight = 0.0;
+    }
+    s.floor = scene.has_effect("collisions");
+    if let Some(solver) = &scene.solver {
+        let v = solver.get_ref();
+        set(&mut s.time_step, v.time_step.as_ref());
+        set(&mut s.substeps, v.substeps.as_ref());
+    }
+    s
+}
+
+/// The tearing sheet's settings of a sheet scene: its `[sheet]` and `[tearing]` keys, its
+/// effects and time step over the defaults of [`SheetSettings`]. Unchecked: the sheet
+/// validates them ([`SheetSettings::validate`]).
+#[must_use]
+pub fn sheet_settings(scene: &Scene) -> SheetSettings<f64> {
+    let mut s = SheetSettings::<f64>::default();
+    if let Some(sheet) = &scene.sheet {
+        let v = sheet.get_ref();
+        set(&mut s.width, v.width.as_ref());
+        set(&mut s.height, v.height.as_ref());
+        if let Some(n) = &v.nx {
+            s.nx = *n.get_ref() as usize;
+        }
+        if let Some(n) = &v.ny {
+            s.ny = *n.get_ref() as usize;
+        }
+        set(&mut s.stretch_modulus, v.stretch_modulus.as_ref());
+        set(&mut s.poisson, v.poisson.as_ref());
+        set(&mut s.bending, v.bending.as_ref());
+        set(&mut s.density, v.density.as_ref());
+        set(&mut s.gravity, v.gravity.as_ref());
+        set(&mut s.max_propagations, v.max_propagations.as_ref());
+    }
+    if let Some(tearing) = &scene.tearing {
+        let v = tearing.get_ref();
+        let t = &mut s.tearing;
+        set(&mut t.thickness, v.thickness.as_ref());
+        set(&mut t.fracture, v.fracture.as_ref());
+        set(&mut t.damage, v.damage.as_ref());
+        set(&mut t.speed, v.speed.as_ref());
+        set(&mut t.min_step, v.min_step.as_ref());
+        set(&mut t.max_step, v.max_step.as_ref());
+        set(&mut t.turn_threshold, v.turn_threshold.as_ref());
+        set(&mut t.snap, v.snap.as_ref());
+        set(&mut t.texture_density, v.texture_density.as_ref());
+        set(&mut t.fibers.seed, v.fiber_seed.as_ref());
+        set(&mut t.detail.weight, v.detail_weight.as_ref());
+        set(&mut t.detail.sigma, v.detail_sigma.as_ref());
+    }
+    s.effects = SheetEffects {
+        gravity: scene.has_effect("gravity"),
+        bending: scene.has_effect("bending"),
+        cones: scene.has_effect("cones"),
+        tearing: scene.has_effect("tearing"),
+    };
+    if let Some(solver) = &scene.solver {
+        set(&mut s.time_step, solver.get_ref().time_step.as_ref());
+    }
+    s
+}
+
+/// Overwrites `field` with the scene's value in precision `T`, if it gives one.
+fn set_real<T: Real>(field: &mut T, value: Option<&toml::Spanned<f64>>) {
+    if let Some(v) = value {
+        *field = T::from_f64(*v.get_ref());
+    }
+}
+
+/// Overwrites `field` with the scene's value, if it gives one.
+fn set<V: Copy>(field: &mut V, value: Option<&toml::Spanned<V>>) {
+    if let Some(v) = value {
+        *field = *v.get_ref();
+    }
+}

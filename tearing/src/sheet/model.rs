@@ -1,0 +1,200 @@
+//! [`SheetModel`]: the sheet as a [`Model`] of the implicit step (seed `002_…` Sec. 5.1,
+//! "the standard FEM used by the physical simulation step"):
+//! $$V(x) = \sum_{t} V^{\text{membrane}}_t(x) + w_b \sum_{e} V^{\text{hinge}}_e(x) + g \sum_i m_i\, y_i,$$
+//! one [`Membrane`] per triangle (Saint Venant–Kirchhoff on the pattern, stiff: paper barely
+//! stretches), one [`Hinge`] per interior edge (the quadratic bending of a flat-rest sheet),
+//! gravity when on. Masses are lumped: a third of each triangle's pattern area times the
+//! density at each corner. A finger holds its vertex: all three coordinates are eliminated
+//! and follow the finger (DESIGN.md: fixed coordinates are eliminated, not constrained).
+//!
+//! The terms are rebuilt from the mesh when its shape changes (a tip slides: new rest
+//! shapes, same stencils); the topology version changes only when the mesh's connectivity or
+//! the set of held vertices does, and only then does the solver re-run its analysis.
+
+use alloc::vec::Vec;
+
+use folio_geometry::SheetMesh;
+use folio_geometry::sheet::{NONE, next_half_edge};
+use folio_kernels::Real;
+use folio_kernels::gravity::Gravity;
+use folio_kernels::hinge::Hinge;
+use folio_kernels::membrane::Membrane;
+
+use super::error::TearingSheetError;
+use super::settings::SheetSettings;
+use folio_solvers::model::{Model, PotentialSet, TermVisitor};
+
+/// The sheet's terms, masses and held vertices (module docs).
+#[derive(Clone, Debug)]
+pub struct SheetModel<T: Real> {
+    version: u64,
+    held: Vec<bool>,
+    masses: Vec<T>,
+    membranes: PotentialSet<T, Membrane<T>, 3>,
+    hinges: PotentialSet<T, Hinge<T>, 4>,
+    gravity: PotentialSet<T, Gravity<T>, 1>,
+}
+
+impl<T: Real> SheetModel<T> {
+    /// The model of `mesh` with the vertices `held` by fingers.
+    ///
+    /// # Errors
+    /// [`TearingSheetError::Kernel`] for a triangle or hinge the kernels refuse.
+    pub fn new(
+        mesh: &SheetMesh<T>,
+        held: &[u32],
+        settings: &SheetSettings<T>,
+    ) -> Result<Self, TearingSheetError> {
+        let mut model = Self {
+            version: 0,
+            held: Vec::new(),
+            masses: Vec::new(),
+            membranes: PotentialSet::new(T::ONE),
+            hinges: PotentialSet::new(settings.bending),
+            gravity: PotentialSet::new(T::ONE),
+        };
+        model.rebuild(mesh, held, settings)?;
+        Ok(model)
+    }
+
+    /// Rebuilds every term from `mesh` and `held` and bumps the topology version (call it
+    /// after a topology edit or a change of fingers). On error the model is unchanged.
+    ///
+    /// # Errors
+    /// As [`SheetModel::new`].
+    pub fn rebuild(
+        &mut self,
+        mesh: &SheetMesh<T>,
+        held: &[u32],
+        settings: &SheetSettings<T>,
+    ) -> Result<(), TearingSheetError> {
+        let n = mesh.vertex_count();
+        let mut next = Self {
+            version: self.version + 1,
+            held: alloc::vec![false; n],
+            masses: alloc::vec![T::ZERO; n],
+            membranes: PotentialSet::new(T::ONE),
+            hinges: PotentialSet::new(settings.bending),
+            gravity: PotentialSet::new(T::ONE),
+        };
+        for &v in held {
+            if let Some(h) = next.held.get_mut(v as usize) {
+                *h = true;
+            }
+        }
+        next.fill(mesh, settings)?;
+        *self = next;
+        Ok(())
+    }
+
+    /// Rebuilds the terms' rest shapes and the masses from the mesh's pattern, keeping the
+    /// stencils and the topology version (after a tip slid). On error the model is
+    /// unchanged.
+    ///
+    /// # Errors
+    /// As [`SheetModel::new`].
+    pub fn reshape(
+        &mut self,
+        mesh: &SheetMesh<T>,
+        settings: &SheetSettings<T>,
+    ) -> Result<(), TearingSheetError> {
+        let mut next = Self {
+            version: self.version,
+            held: self.held.clone(),
+            masses: alloc::vec![T::ZERO; mesh.vertex_count()],
+            membranes: PotentialSet::new(T::ONE),
+            hinges: PotentialSet::new(settings.bending),
+            gravity: PotentialSet::new(T::ONE),
+        };
+        next.fill(mesh, settings)?;
+        *self = next;
+        Ok(())
+    }
+
+    /// The membrane kernel of every triangle, in triangle order.
+    #[must_use]
+    pub fn membranes(&self) -> &PotentialSet<T, Membrane<T>, 3> {
+        &self.membranes
+    }
+
+    /// The hinges (interior edges).
+    #[must_use]
+    pub fn hinges(&self) -> &PotentialSet<T, Hinge<T>, 4> {
+        &self.hinges
+    }
+
+    /// `true` when `node` is held by a finger.
+    #[must_use]
+    pub fn is_held(&self, node: usize) -> bool {
+        self.held.get(node).copied().unwrap_or(false)
+    }
+
+    fn fill(
+        &mut self,
+        mesh: &SheetMesh<T>,
+        settings: &SheetSettings<T>,
+    ) -> Result<(), TearingSheetError> {
+        let p = mesh.pattern();
+        let third = T::ONE / T::from_f64(3.0);
+        for (t, tri) in mesh.triangles().iter().enumerate() {
+            let corners = tri.map(|i| p[i as usize]);
+            let membrane = Membrane::new(corners, settings.stretch_modulus, settings.poisson)
+                .map_err(|_| TearingSheetError::Kernel { index: t })?;
+            self.membranes.push(membrane, *tri);
+            let share = mesh.pattern_area(t) * settings.density * third;
+            for &i in tri {
+                self.masses[i as usize] += share;
+            }
+        }
+        if settings.effects.bending {
+            for h in 0..3 * mesh.triangle_count() as u32 {
+                let g = mesh.twin(h);
+                if g == NONE || g < h {
+                    continue;
+                }
+                let (a, b) = mesh.half_edge(h);
+                let c = mesh.half_edge(next_half_edge(h)).1;
+                let d = mesh.half_edge(next_half_edge(g)).1;
+                let nodes = [a, b, c, d];
+                let hinge = Hinge::new(nodes.map(|i| p[i as usize])).map_err(|_| {
+                    TearingSheetError::Kernel {
+                        index: h as usize / 3,
+                    }
+                })?;
+                self.hinges.push(hinge, nodes);
+            }
+        }
+        if settings.effects.gravity {
+            for (i, &m) in self.masses.iter().enumerate() {
+                let term = Gravity::new(settings.gravity, m)
+                    .map_err(|_| TearingSheetError::InvalidSetting { field: "gravity" })?;
+                self.gravity.push(term, [i as u32]);
+            }
+        }
+        Ok(())
+    }
+}
+
+impl<T: Real> Model<T> for SheetModel<T> {
+    fn topology_version(&self) -> u64 {
+        self.version
+    }
+
+    fn node_count(&self) -> usize {
+        self.masses.len()
+    }
+
+    fn is_fixed(&self, node: usize, _axis: usize) -> bool {
+        self.is_held(node)
+    }
+
+    fn mass(&self, node: usize) -> T {
+        self.masses.get(node).copied().unwrap_or(T::ZERO)
+    }
+
+    fn visit_terms<V: TermVisitor<T>>(&self, visitor: &mut V) {
+        visitor.potentials(&self.membranes);
+        visitor.potentials(&self.hinges);
+        visitor.potentials(&self.gravity);
+    }
+}

@@ -1,0 +1,139 @@
+//! [`SheetSettings`]: the tearing sheet's size, mesh, material and effects.
+//!
+//! **Units.** Lengths in sheet units, time in seconds, masses and forces in the units in
+//! which the seed's fracture constant $c = 0.005$ (eq. 3) is given: the seed leaves them
+//! open. The defaults make paper of thickness $e = 0.01$ that tears when its lips are
+//! stretched by a few tenths of a percent (a real sheet fails near 1-3 % strain, but the
+//! coarse mesh spreads the stress concentration at a tip over a whole triangle).
+
+use crate::TearSettings;
+use folio_geometry::sheet::ConeSettings;
+use folio_kernels::Real;
+
+use super::error::TearingSheetError;
+
+/// The effects a tearing scene may call for; what is off builds no term and does no work.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SheetEffects {
+    /// Gravity on the nodes.
+    pub gravity: bool,
+    /// The bending energy (hinges).
+    pub bending: bool,
+    /// The generalized-cone layer and its remesh (junction points need it).
+    pub cones: bool,
+    /// Tearing (seed `002_…`).
+    pub tearing: bool,
+}
+
+impl Default for SheetEffects {
+    /// Bending, cones and tearing on; gravity off (the hands hold the sheet).
+    fn default() -> Self {
+        Self {
+            gravity: false,
+            bending: true,
+            cones: true,
+            tearing: true,
+        }
+    }
+}
+
+/// Settings of [`super::TearingSheet`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SheetSettings<T> {
+    /// Pattern width $W$ (sheet units).
+    pub width: T,
+    /// Pattern height $H$ (sheet units).
+    pub height: T,
+    /// Quads across (two triangles each).
+    pub nx: usize,
+    /// Quads up.
+    pub ny: usize,
+    /// 2D Young's modulus $Y$ of the membrane (force per sheet unit).
+    pub stretch_modulus: T,
+    /// Poisson's ratio $\nu \in [0, 0.5)$.
+    pub poisson: T,
+    /// Weight of the hinge bending energy (force times sheet unit).
+    pub bending: T,
+    /// Mass per pattern area.
+    pub density: T,
+    /// Gravitational acceleration along −Y (sheet units / s²), when gravity is on.
+    pub gravity: T,
+    /// Time step (seconds).
+    pub time_step: T,
+    /// Propagations per frame at most, each followed by a relaxation step (seed Fig. 4,
+    /// step 4).
+    pub max_propagations: u32,
+    /// The effects.
+    pub effects: SheetEffects,
+    /// The cone layer's thresholds.
+    pub cones: ConeSettings<T>,
+    /// The tearing step's parameters.
+    pub tearing: TearSettings,
+}
+
+impl<T: Real> Default for SheetSettings<T> {
+    /// A 12 x 9 sheet of 8 x 6 quads (96 triangles), $Y = 0.003$, $\nu = 0.3$, bending
+    /// $10^{-5}$, density $10^{-8}$ (stiff at $h = 1/60$: $Y h^2 / m \approx 70$ per node),
+    /// gravity 9.81 when on, two propagations per frame.
+    fn default() -> Self {
+        Self {
+            width: T::from_f64(12.0),
+            height: T::from_f64(9.0),
+            nx: 8,
+            ny: 6,
+            stretch_modulus: T::from_f64(3e-3),
+            poisson: T::from_f64(0.3),
+            bending: T::from_f64(1e-5),
+            density: T::from_f64(1e-8),
+            gravity: T::from_f64(9.81),
+            time_step: T::from_f64(1.0 / 60.0),
+            max_propagations: 2,
+            effects: SheetEffects::default(),
+            cones: ConeSettings::default(),
+            tearing: TearSettings::default(),
+        }
+    }
+}
+
+impl<T: Real> SheetSettings<T> {
+    /// Checks every field.
+    ///
+    /// # Errors
+    /// [`TearingSheetError::InvalidSetting`] naming the first bad field.
+    pub fn validate(&self) -> Result<(), TearingSheetError> {
+        let positive = |x: T| x.is_finite() && x > T::ZERO;
+        let check = |ok: bool, field: &'static str| {
+            if ok {
+                Ok(())
+            } else {
+                Err(TearingSheetError::InvalidSetting { field })
+            }
+        };
+        check(positive(self.width), "width")?;
+        check(positive(self.height), "height")?;
+        check((1..=64).contains(&self.nx), "nx")?;
+        check((1..=64).contains(&self.ny), "ny")?;
+        check(positive(self.stretch_modulus), "stretch_modulus")?;
+        check(
+            self.poisson.is_finite() && self.poisson >= T::ZERO && self.poisson < T::HALF,
+            "poisson",
+        )?;
+        check(
+            self.bending.is_finite() && self.bending >= T::ZERO,
+            "bending",
+        )?;
+        check(positive(self.density), "density")?;
+        check(self.gravity.is_finite(), "gravity")?;
+        check(positive(self.time_step), "time_step")?;
+        check(self.max_propagations <= 64, "max_propagations")?;
+        check(
+            self.cones.flat_curvature.is_finite() && self.cones.flat_curvature >= T::ZERO,
+            "cones.flat_curvature",
+        )?;
+        check(
+            self.cones.flip_margin >= T::ZERO && self.cones.flip_margin <= T::ONE,
+            "cones.flip_margin",
+        )?;
+        self.tearing.validate().map_err(TearingSheetError::Tearing)
+    }
+}
