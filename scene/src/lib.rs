@@ -15,6 +15,7 @@ pub mod builtin;
 pub mod events;
 pub mod fixtures;
 pub mod hands;
+pub mod keys;
 pub mod scene;
 pub mod settings;
 pub mod sheet;

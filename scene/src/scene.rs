@@ -2,8 +2,15 @@
 //! Every error names its line and column; a scene that does not check is never run.
 
 use core::ops::Range;
+
+use folio_tearing::TearSettings;
+use folio_tearing::sheet::SheetSettings;
 use serde::Deserialize;
+use serde::de::IntoDeserializer;
 use toml::Spanned;
+use toml::de::DeTable;
+
+use crate::keys::{self, KeySpans};
 
 /// A scene: which page model, which book or page, which input, for how long.
 #[derive(Clone, Debug, Deserialize)]
@@ -23,10 +30,18 @@ pub struct Scene {
     pub effects: Option<Spanned<Vec<Spanned<String>>>>,
     /// The book around a DOG page (`model = "dog"` only).
     pub book: Option<Spanned<BookSection>>,
-    /// The sheet of a tearing scene (`model = "sheet"` only).
-    pub sheet: Option<Spanned<SheetSection>>,
-    /// The tearing step's parameters (`model = "sheet"` only).
-    pub tearing: Option<Spanned<TearingSection>>,
+    /// The sheet of a tearing scene (`model = "sheet"` only): the keys of
+    /// [`SheetSettings`] (omitted keys keep its defaults), except `tearing` (the scene's
+    /// `[tearing]`), `time_step` (`solver.time_step`) and `effects` (the scene's list).
+    pub sheet: Option<Spanned<SheetSettings<f64>>>,
+    /// A slit cut into the sheet before the run, written `sheet.notch`: a polyline of grid
+    /// vertices from a point on the border, each segment along a grid line or a quad's
+    /// diagonal (`model = "sheet"` only).
+    #[serde(skip)]
+    pub notch: Option<Spanned<Vec<Spanned<[f64; 2]>>>>,
+    /// The tearing step's parameters (`model = "sheet"` only): the keys of
+    /// [`TearSettings`], with `[tearing.fibers]` and `[tearing.detail]`.
+    pub tearing: Option<Spanned<TearSettings>>,
     /// Potential weights of the DOG book (`model = "dog"` only).
     pub weights: Option<Spanned<WeightsSection>>,
     /// Time step and solver settings.
@@ -40,6 +55,10 @@ pub struct Scene {
     /// What the run must show; `folio run` fails when it does not.
     #[serde(default)]
     pub expect: Expect,
+
+    /// Where each key of the file sits (errors of a model's `validate()` point there).
+    #[serde(skip)]
+    pub keys: KeySpans,
 }
 
 /// A scene's stated expectations, checked against the run's summary.
@@ -174,67 +193,6 @@ pub struct WeightsSection {
     pub iso_page: Option<Spanned<f64>>,
     /// The grab pull (400).
     pub pull: Option<Spanned<f64>>,
-}
-
-/// The sheet of a tearing scene (seed `002_…`; `folio_tearing::sheet::SheetSettings`);
-/// omitted keys keep the sheet's defaults. Lengths in sheet units.
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SheetSection {
-    /// Pattern width (12).
-    pub width: Option<Spanned<f64>>,
-    /// Pattern height (9).
-    pub height: Option<Spanned<f64>>,
-    /// Quads across, two triangles each (8).
-    pub nx: Option<Spanned<u32>>,
-    /// Quads up (6).
-    pub ny: Option<Spanned<u32>>,
-    /// A slit cut before the run: a polyline of grid vertices from a point on the border,
-    /// each segment along a grid line or a quad's diagonal.
-    pub notch: Option<Spanned<Vec<Spanned<[f64; 2]>>>>,
-    /// 2D Young's modulus of the membrane (force per sheet unit; 0.003).
-    pub stretch_modulus: Option<Spanned<f64>>,
-    /// Poisson's ratio in [0, 0.5) (0.3).
-    pub poisson: Option<Spanned<f64>>,
-    /// Weight of the hinge bending energy (1e-5).
-    pub bending: Option<Spanned<f64>>,
-    /// Mass per pattern area (1e-8).
-    pub density: Option<Spanned<f64>>,
-    /// Gravitational acceleration along -y when `gravity` is simulated (9.81).
-    pub gravity: Option<Spanned<f64>>,
-    /// Propagations per frame at most (2).
-    pub max_propagations: Option<Spanned<u32>>,
-}
-
-/// The tearing step's parameters (seed `002_…` eq. 1-7; `folio_tearing::TearSettings`);
-/// omitted keys keep the defaults.
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct TearingSection {
-    /// Paper thickness $e$ of eq. 6 (sheet units; 0.01).
-    pub thickness: Option<Spanned<f64>>,
-    /// The material constant $c$ of eq. 3 (0.005).
-    pub fracture: Option<Spanned<f64>>,
-    /// Damage $D$ at tear tips, eq. 3 (0.5).
-    pub damage: Option<Spanned<f64>>,
-    /// Propagation speed: sheet units per unit of release rate (50).
-    pub speed: Option<Spanned<f64>>,
-    /// Shortest propagation step (sheet units; 0.05).
-    pub min_step: Option<Spanned<f64>>,
-    /// Longest propagation step (sheet units; 0.6).
-    pub max_step: Option<Spanned<f64>>,
-    /// Turn (radians) above which the tip splits into two lips (0.1).
-    pub turn_threshold: Option<Spanned<f64>>,
-    /// Snap distance of new vertices, relative to the triangle's longest edge (0.12).
-    pub snap: Option<Spanned<f64>>,
-    /// Alpha texture pixels per sheet unit (32).
-    pub texture_density: Option<Spanned<f64>>,
-    /// Seed of the fiber texture.
-    pub fiber_seed: Option<Spanned<u64>>,
-    /// Weight of the stress field against the fibers in the detail path, eq. 7 (0.8).
-    pub detail_weight: Option<Spanned<f64>>,
-    /// Width $\sigma$ of the detail path's stress field (sheet units; 0.1).
-    pub detail_sigma: Option<Spanned<f64>>,
 }
 
 /// Time step and solver settings; omitted keys keep the model's defaults.
@@ -440,8 +398,16 @@ impl Scene {
     /// The first problem, at its line and column: TOML syntax, an unknown key or model, a
     /// wrong type, a value out of range, an input that does not fit the model.
     pub fn parse(text: &str) -> Result<Self, SceneError> {
-        let scene: Self = toml::from_str(text)
-            .map_err(|e| SceneError::at(text, e.span(), e.message().trim().to_string()))?;
+        let syntax = |e: toml::de::Error| SceneError::at(text, e.span(), e.message().trim());
+        let mut doc = DeTable::parse(text).map_err(syntax)?;
+        let notch = keys::take(&mut doc, "sheet", "notch");
+        let keys = KeySpans::of(doc.get_ref());
+        let mut scene = Self::deserialize(doc.into_deserializer()).map_err(syntax)?;
+        scene.notch = notch
+            .map(|v| Deserialize::deserialize(v.into_deserializer()))
+            .transpose()
+            .map_err(syntax)?;
+        scene.keys = keys;
         scene.check(text)?;
         Ok(scene)
     }
@@ -512,6 +478,7 @@ impl Scene {
         let spans = [
             ("[sheet]", self.sheet.as_ref().map(Spanned::span)),
             ("[tearing]", self.tearing.as_ref().map(Spanned::span)),
+            ("sheet.notch", self.notch.as_ref().map(Spanned::span)),
             ("output.mesh", o.mesh.as_ref().map(Spanned::span)),
             ("output.textures", o.textures.as_ref().map(Spanned::span)),
             ("output.picture", o.picture.as_ref().map(Spanned::span)),

@@ -75,44 +75,17 @@ pub fn spring_settings(scene: &Scene, seed: bool) -> SpringSettings<f64> {
     s
 }
 
-/// The tearing sheet's settings of a sheet scene: its `[sheet]` and `[tearing]` keys, its
-/// effects and time step over the defaults of [`SheetSettings`]. Unchecked: the sheet
+/// The tearing sheet's settings of a sheet scene: its `[sheet]` (a [`SheetSettings`]) with
+/// its `[tearing]` (a `TearSettings`), its effects and its time step. Unchecked: the sheet
 /// validates them ([`SheetSettings::validate`]).
 #[must_use]
 pub fn sheet_settings(scene: &Scene) -> SheetSettings<f64> {
-    let mut s = SheetSettings::<f64>::default();
-    if let Some(sheet) = &scene.sheet {
-        let v = sheet.get_ref();
-        set(&mut s.width, v.width.as_ref());
-        set(&mut s.height, v.height.as_ref());
-        if let Some(n) = &v.nx {
-            s.nx = *n.get_ref() as usize;
-        }
-        if let Some(n) = &v.ny {
-            s.ny = *n.get_ref() as usize;
-        }
-        set(&mut s.stretch_modulus, v.stretch_modulus.as_ref());
-        set(&mut s.poisson, v.poisson.as_ref());
-        set(&mut s.bending, v.bending.as_ref());
-        set(&mut s.density, v.density.as_ref());
-        set(&mut s.gravity, v.gravity.as_ref());
-        set(&mut s.max_propagations, v.max_propagations.as_ref());
-    }
+    let mut s = scene
+        .sheet
+        .as_ref()
+        .map_or_else(SheetSettings::default, |v| *v.get_ref());
     if let Some(tearing) = &scene.tearing {
-        let v = tearing.get_ref();
-        let t = &mut s.tearing;
-        set(&mut t.thickness, v.thickness.as_ref());
-        set(&mut t.fracture, v.fracture.as_ref());
-        set(&mut t.damage, v.damage.as_ref());
-        set(&mut t.speed, v.speed.as_ref());
-        set(&mut t.min_step, v.min_step.as_ref());
-        set(&mut t.max_step, v.max_step.as_ref());
-        set(&mut t.turn_threshold, v.turn_threshold.as_ref());
-        set(&mut t.snap, v.snap.as_ref());
-        set(&mut t.texture_density, v.texture_density.as_ref());
-        set(&mut t.fibers.seed, v.fiber_seed.as_ref());
-        set(&mut t.detail.weight, v.detail_weight.as_ref());
-        set(&mut t.detail.sigma, v.detail_sigma.as_ref());
+        s.tearing = *tearing.get_ref();
     }
     s.effects = SheetEffects {
         gravity: scene.has_effect("gravity"),

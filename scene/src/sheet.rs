@@ -47,11 +47,13 @@ pub fn frames(scene: &Scene) -> Result<u32, Problem> {
     }
 }
 
-/// Checks a sheet scene: builds its sheet ([`setup`]) and counts its frames.
+/// Checks a sheet scene: each setting in its one place, then builds its sheet ([`setup`])
+/// and counts its frames.
 ///
 /// # Errors
 /// As [`setup`] and [`frames`].
 pub fn check(scene: &Scene) -> Result<(), Problem> {
+    check_spelling(scene)?;
     setup(scene)?;
     frames(scene).map(|_| ())
 }
@@ -70,11 +72,7 @@ pub fn setup(scene: &Scene) -> Result<(TearingSheet<f64>, Hands), Problem> {
     hands::check(specs, [settings.width, settings.height])?;
     let mut mesh = SheetMesh::rectangle(settings.width, settings.height, settings.nx, settings.ny)
         .map_err(|e| (whole_sheet(scene), format!("sheet mesh: {e}")))?;
-    if let Some(notch) = scene
-        .sheet
-        .as_ref()
-        .and_then(|s| s.get_ref().notch.as_ref())
-    {
+    if let Some(notch) = &scene.notch {
         cut_notch(&mut mesh, notch, &settings)?;
     }
     let mut sheet =
@@ -88,175 +86,69 @@ fn whole_sheet(scene: &Scene) -> Range<usize> {
     scene.sheet.as_ref().map_or(0..0, Spanned::span)
 }
 
-/// Every scene key of the sheet's settings: the settings' name for it (as the sheet's and
-/// the tearing step's errors name it), the scene key, the rule it breaks, and its span in
-/// the scene (if the scene sets it).
-fn keys(
-    scene: &Scene,
-) -> Vec<(
-    &'static str,
-    &'static str,
-    &'static str,
-    Option<Range<usize>>,
-)> {
-    let mut out = Vec::new();
-    let sheet = scene.sheet.as_ref().map(Spanned::get_ref);
-    let f = |v: Option<&Spanned<f64>>| v.map(Spanned::span);
-    let n = |v: Option<&Spanned<u32>>| v.map(Spanned::span);
-    if let Some(s) = sheet {
-        out.extend([
-            (
-                "width",
-                "sheet.width",
-                "finite and > 0",
-                f(s.width.as_ref()),
-            ),
-            (
-                "height",
-                "sheet.height",
-                "finite and > 0",
-                f(s.height.as_ref()),
-            ),
-            ("nx", "sheet.nx", "between 1 and 64", n(s.nx.as_ref())),
-            ("ny", "sheet.ny", "between 1 and 64", n(s.ny.as_ref())),
-            (
-                "stretch_modulus",
-                "sheet.stretch_modulus",
-                "finite and > 0",
-                f(s.stretch_modulus.as_ref()),
-            ),
-            (
-                "poisson",
-                "sheet.poisson",
-                "in [0, 0.5)",
-                f(s.poisson.as_ref()),
-            ),
-            (
-                "bending",
-                "sheet.bending",
-                "finite and >= 0",
-                f(s.bending.as_ref()),
-            ),
-            (
-                "density",
-                "sheet.density",
-                "finite and > 0",
-                f(s.density.as_ref()),
-            ),
-            ("gravity", "sheet.gravity", "finite", f(s.gravity.as_ref())),
-            (
-                "max_propagations",
-                "sheet.max_propagations",
-                "at most 64",
-                n(s.max_propagations.as_ref()),
-            ),
-        ]);
+/// The keys of [`SheetSettings`] that a scene spells elsewhere, and where.
+const SPELLED_ELSEWHERE: [(&str, &str); 3] = [
+    ("sheet.tearing", "[tearing]"),
+    ("sheet.time_step", "solver.time_step"),
+    ("sheet.effects", "the scene's `effects` list"),
+];
+
+/// Refuses a key of [`SheetSettings`] that a scene writes in another place
+/// ([`SPELLED_ELSEWHERE`]), so that each setting has one spelling in a scene.
+fn check_spelling(scene: &Scene) -> Result<(), Problem> {
+    for (key, instead) in SPELLED_ELSEWHERE {
+        if let Some(span) = scene.keys.span(key) {
+            return Err((span, format!("{key}: a scene writes it as {instead}")));
+        }
     }
-    if let Some(s) = &scene.solver {
-        let h = s.get_ref().time_step.as_ref();
-        out.push(("time_step", "solver.time_step", "in (0, 0.1]", f(h)));
-    }
-    if let Some(t) = scene.tearing.as_ref().map(Spanned::get_ref) {
-        let range = "in its range";
-        out.extend([
-            (
-                "TearSettings.thickness",
-                "tearing.thickness",
-                range,
-                f(t.thickness.as_ref()),
-            ),
-            (
-                "TearSettings.fracture",
-                "tearing.fracture",
-                range,
-                f(t.fracture.as_ref()),
-            ),
-            (
-                "TearSettings.damage",
-                "tearing.damage",
-                range,
-                f(t.damage.as_ref()),
-            ),
-            (
-                "TearSettings.speed",
-                "tearing.speed",
-                range,
-                f(t.speed.as_ref()),
-            ),
-            (
-                "TearSettings.min_step",
-                "tearing.min_step",
-                range,
-                f(t.min_step.as_ref()),
-            ),
-            (
-                "TearSettings.max_step",
-                "tearing.max_step",
-                range,
-                f(t.max_step.as_ref()),
-            ),
-            (
-                "TearSettings.turn_threshold",
-                "tearing.turn_threshold",
-                range,
-                f(t.turn_threshold.as_ref()),
-            ),
-            (
-                "TearSettings.snap",
-                "tearing.snap",
-                range,
-                f(t.snap.as_ref()),
-            ),
-            (
-                "TearSettings.texture_density",
-                "tearing.texture_density",
-                range,
-                f(t.texture_density.as_ref()),
-            ),
-            (
-                "DetailSettings.weight",
-                "tearing.detail_weight",
-                range,
-                f(t.detail_weight.as_ref()),
-            ),
-            (
-                "DetailSettings.sigma",
-                "tearing.detail_sigma",
-                range,
-                f(t.detail_sigma.as_ref()),
-            ),
-        ]);
-    }
-    out
+    Ok(())
 }
 
-/// What a refused setting is, at the scene key that set it (module docs).
+/// The scene key of a field that [`SheetSettings::validate`] names: a path from
+/// [`SheetSettings`] (`"nx"`, `"cones.flip_margin"`), or a tearing field named by its type
+/// (`"TearSettings.snap"`, `"DetailSettings.sigma"`, `"FiberSettings.scale"`).
+fn scene_key(field: &str) -> String {
+    let tearing = [
+        ("TearSettings.", "tearing."),
+        ("DetailSettings.", "tearing.detail."),
+        ("FiberSettings.", "tearing.fibers."),
+    ];
+    if field == "time_step" {
+        return "solver.time_step".into();
+    }
+    tearing
+        .iter()
+        .find_map(|(ty, key)| field.strip_prefix(ty).map(|rest| format!("{key}{rest}")))
+        .unwrap_or_else(|| format!("sheet.{field}"))
+}
+
+/// What a refused setting is, at the scene key that set it (else at `[sheet]`).
 fn settings_problem(scene: &Scene, e: &TearingSheetError) -> Problem {
-    let field = match *e {
-        TearingSheetError::InvalidSetting { field }
-        | TearingSheetError::Tearing(
-            TearingError::NonFinite { field } | TearingError::OutOfRange { field, .. },
-        ) => field,
-        _ => "",
-    };
-    let known = keys(scene).into_iter().find(|k| k.0 == field);
-    let message = match (*e, &known) {
-        (TearingSheetError::InvalidSetting { .. }, Some((_, key, rule, _))) => {
-            format!("{key} must be {rule}")
+    let (key, message) = match *e {
+        TearingSheetError::InvalidSetting { field, rule } => {
+            let key = scene_key(field);
+            let message = format!("{key} must be {rule}");
+            (Some(key), message)
         }
-        (
-            TearingSheetError::Tearing(TearingError::OutOfRange {
-                value, min, max, ..
-            }),
-            Some((_, key, _, _)),
-        ) => format!("{key} = {value} is outside [{min}, {max}]"),
-        (TearingSheetError::Tearing(TearingError::NonFinite { .. }), Some((_, key, _, _))) => {
-            format!("{key} is not finite")
+        TearingSheetError::Tearing(TearingError::OutOfRange {
+            field,
+            value,
+            min,
+            max,
+        }) => {
+            let key = scene_key(field);
+            let message = format!("{key} = {value} is outside [{min}, {max}]");
+            (Some(key), message)
         }
-        _ => e.to_string(),
+        TearingSheetError::Tearing(TearingError::NonFinite { field }) => {
+            let key = scene_key(field);
+            let message = format!("{key} is not finite");
+            (Some(key), message)
+        }
+        _ => (None, e.to_string()),
     };
-    let span = known
-        .and_then(|k| k.3)
+    let span = key
+        .and_then(|k| scene.keys.span(&k))
         .unwrap_or_else(|| whole_sheet(scene));
     (span, message)
 }
@@ -331,4 +223,73 @@ fn cut_notch(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::Scene;
+
+    const SHEET: &str = "name = \"x\"\nmodel = \"sheet\"\nframes = 2\n\
+        [[input.hands]]\nfingers = [[4.5, 0.0]]\n";
+
+    /// The line and column of the error of `extra` appended to a valid sheet scene.
+    fn refused(extra: &str) -> (usize, usize, String) {
+        let e = Scene::parse(&format!("{SHEET}{extra}")).expect_err(extra);
+        (e.line, e.column, e.message)
+    }
+
+    #[test]
+    fn the_settings_types_are_the_scene_keys() {
+        let text = format!(
+            "{SHEET}[sheet]\nnx = 4\nnotch = [[6.0, 0.0], [6.0, 1.5]]\n\
+             [sheet.cones]\nflip_margin = 0.25\n[tearing]\nsnap = 0.2\n\
+             [tearing.fibers]\nseed = 7\n[tearing.detail]\nsigma = 0.3\n"
+        );
+        let scene = Scene::parse(&text).unwrap();
+        let s = crate::settings::sheet_settings(&scene);
+        let defaults = folio_tearing::sheet::SheetSettings::<f64>::default();
+        assert_eq!((s.nx, s.ny), (4, defaults.ny));
+        assert_eq!(s.cones.flip_margin, 0.25);
+        assert_eq!(s.tearing.snap, 0.2);
+        assert_eq!(s.tearing.fibers.seed, 7);
+        assert_eq!(s.tearing.detail.sigma, 0.3);
+        assert_eq!(s.tearing.detail.weight, defaults.tearing.detail.weight);
+        assert_eq!(scene.notch.as_ref().map(|n| n.get_ref().len()), Some(2));
+    }
+
+    #[test]
+    fn a_refused_setting_is_reported_at_its_key() {
+        let (line, column, message) = refused("[sheet.cones]\nflip_margin = 2.0\n");
+        assert_eq!((line, column), (7, 15), "{message}");
+        assert!(
+            message.contains("sheet.cones.flip_margin must be in [0, 1]"),
+            "{message}"
+        );
+        let (line, column, message) = refused("[tearing.detail]\nweight = 1.5\n");
+        assert_eq!((line, column), (7, 10), "{message}");
+        assert!(
+            message.starts_with("tearing.detail.weight = 1.5"),
+            "{message}"
+        );
+        let (line, column, message) = refused("[sheet]\nheight = -1.0\n");
+        assert_eq!((line, column), (7, 10), "{message}");
+        assert_eq!(message, "sheet.height must be finite and > 0");
+    }
+
+    #[test]
+    fn unknown_and_misplaced_keys_are_refused_at_their_place() {
+        let (line, column, message) = refused("[tearing.fibers]\ncolour = 1\n");
+        assert_eq!((line, column), (7, 1), "{message}");
+        assert!(message.contains("unknown field `colour`"), "{message}");
+        for (extra, place) in [
+            ("[sheet]\ntime_step = 0.01\n", "solver.time_step"),
+            ("[sheet.tearing]\nsnap = 0.1\n", "[tearing]"),
+            ("[sheet.effects]\ngravity = true\n", "`effects` list"),
+        ] {
+            let (line, _, message) = refused(extra);
+            // The section starts on line 6: its header, or its first key on line 7.
+            assert!((6..=7).contains(&line), "{extra}: line {line}: {message}");
+            assert!(message.contains(place), "{extra}: {message}");
+        }
+    }
 }

@@ -199,6 +199,11 @@ fn cell(x: f64, n: u32) -> u32 {
 }
 
 /// Settings of the detail path (eq. 7).
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(default, deny_unknown_fields)
+)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DetailSettings {
     /// Weight $w \in [0, 1]$ of the Gaussian stress field against the fiber texture: 0

@@ -37,6 +37,11 @@ pub const MAX_OCTAVES: u32 = 12;
 pub const NON_FINITE_VALUE: f64 = 1.0;
 
 /// Settings of [`FiberTexture`] (module docs for the formulas).
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(default, deny_unknown_fields)
+)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FiberSettings {
     /// Seed of the lattice gradients; any value.

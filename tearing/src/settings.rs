@@ -7,6 +7,11 @@ use crate::fiber::FiberSettings;
 
 /// Parameters of [`crate::Tears`]. Lengths in sheet units; forces in the physics' force
 /// units; release rates and fracture energies in force units per sheet unit.
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(default, deny_unknown_fields)
+)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TearSettings {
     /// Paper thickness $e$ of eq. 6 (sheet units).

@@ -66,6 +66,18 @@ pub enum Region {
 }
 
 /// Thresholds of the cone layer.
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(
+        default,
+        deny_unknown_fields,
+        bound(
+            serialize = "T: serde::Serialize",
+            deserialize = "T: folio_kernels::Real + serde::Deserialize<'de>"
+        )
+    )
+)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ConeSettings<T> {
     /// Curvature magnitude (1 / sheet unit) below which a triangle is flat.

@@ -13,8 +13,11 @@ use folio_solvers::error::SolverError;
 pub enum TearingSheetError {
     /// A setting of [`super::SheetSettings`] is NaN, infinite or out of range.
     InvalidSetting {
-        /// The field.
+        /// The field, as a path from [`super::SheetSettings`] (`"width"`,
+        /// `"cones.flip_margin"`).
         field: &'static str,
+        /// The rule its value breaks (`"finite and > 0"`, `"between 1 and 64"`).
+        rule: &'static str,
     },
     /// The tearing settings were refused.
     Tearing(TearingError),
@@ -46,7 +49,9 @@ pub enum TearingSheetError {
 impl fmt::Display for TearingSheetError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::InvalidSetting { field } => write!(f, "sheet setting `{field}` is out of range"),
+            Self::InvalidSetting { field, rule } => {
+                write!(f, "sheet setting `{field}` must be {rule}")
+            }
             Self::Tearing(e) => write!(f, "tearing settings: {e}"),
             Self::Mesh(e) => write!(f, "sheet mesh: {e}"),
             Self::Solver(e) => write!(f, "solver: {e}"),

@@ -166,8 +166,12 @@ impl<T: Real> SheetModel<T> {
         }
         if settings.effects.gravity {
             for (i, &m) in self.masses.iter().enumerate() {
-                let term = Gravity::new(settings.gravity, m)
-                    .map_err(|_| TearingSheetError::InvalidSetting { field: "gravity" })?;
+                let term = Gravity::new(settings.gravity, m).map_err(|_| {
+                    TearingSheetError::InvalidSetting {
+                        field: "gravity",
+                        rule: "finite",
+                    }
+                })?;
                 self.gravity.push(term, [i as u32]);
             }
         }

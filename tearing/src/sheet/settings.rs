@@ -13,6 +13,11 @@ use folio_kernels::Real;
 use super::error::TearingSheetError;
 
 /// The effects a tearing scene may call for; what is off builds no term and does no work.
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(default, deny_unknown_fields)
+)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SheetEffects {
     /// Gravity on the nodes.
@@ -38,6 +43,18 @@ impl Default for SheetEffects {
 }
 
 /// Settings of [`super::TearingSheet`].
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(
+        default,
+        deny_unknown_fields,
+        bound(
+            serialize = "T: serde::Serialize",
+            deserialize = "T: folio_kernels::Real + serde::Deserialize<'de>"
+        )
+    )
+)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SheetSettings<T> {
     /// Pattern width $W$ (sheet units).
@@ -102,37 +119,50 @@ impl<T: Real> SheetSettings<T> {
     /// [`TearingSheetError::InvalidSetting`] naming the first bad field.
     pub fn validate(&self) -> Result<(), TearingSheetError> {
         let positive = |x: T| x.is_finite() && x > T::ZERO;
-        let check = |ok: bool, field: &'static str| {
+        let check = |ok: bool, field: &'static str, rule: &'static str| {
             if ok {
                 Ok(())
             } else {
-                Err(TearingSheetError::InvalidSetting { field })
+                Err(TearingSheetError::InvalidSetting { field, rule })
             }
         };
-        check(positive(self.width), "width")?;
-        check(positive(self.height), "height")?;
-        check((1..=64).contains(&self.nx), "nx")?;
-        check((1..=64).contains(&self.ny), "ny")?;
-        check(positive(self.stretch_modulus), "stretch_modulus")?;
+        let (finite_positive, grid) = ("finite and > 0", "between 1 and 64");
+        check(positive(self.width), "width", finite_positive)?;
+        check(positive(self.height), "height", finite_positive)?;
+        check((1..=64).contains(&self.nx), "nx", grid)?;
+        check((1..=64).contains(&self.ny), "ny", grid)?;
+        check(
+            positive(self.stretch_modulus),
+            "stretch_modulus",
+            finite_positive,
+        )?;
         check(
             self.poisson.is_finite() && self.poisson >= T::ZERO && self.poisson < T::HALF,
             "poisson",
+            "in [0, 0.5)",
         )?;
         check(
             self.bending.is_finite() && self.bending >= T::ZERO,
             "bending",
+            "finite and >= 0",
         )?;
-        check(positive(self.density), "density")?;
-        check(self.gravity.is_finite(), "gravity")?;
-        check(positive(self.time_step), "time_step")?;
-        check(self.max_propagations <= 64, "max_propagations")?;
+        check(positive(self.density), "density", finite_positive)?;
+        check(self.gravity.is_finite(), "gravity", "finite")?;
+        check(positive(self.time_step), "time_step", finite_positive)?;
+        check(
+            self.max_propagations <= 64,
+            "max_propagations",
+            "at most 64",
+        )?;
         check(
             self.cones.flat_curvature.is_finite() && self.cones.flat_curvature >= T::ZERO,
             "cones.flat_curvature",
+            "finite and >= 0",
         )?;
         check(
             self.cones.flip_margin >= T::ZERO && self.cones.flip_margin <= T::ONE,
             "cones.flip_margin",
+            "in [0, 1]",
         )?;
         self.tearing.validate().map_err(TearingSheetError::Tearing)
     }
