@@ -33,6 +33,7 @@ fn pattern_size<T: Real>(solver: &Solver<T>) -> (usize, usize) {
         .kkt()
         .map_or((0, 0), |k| (k.pattern.dofs, k.pattern.rows))
 }
+
 /// Every node's initial position: the layout's midlines and cover ends in the XY plane; the
 /// page nodes at the origin until the page is placed.
 fn initial_positions<T: Real>(layout: &BookLayout, n: NodeMap) -> Vec<T::Vec3> {
@@ -99,24 +100,34 @@ pub enum Phase {
     /// The active page was released and is settling.
     Released,
 }
+
 /// The user's hold on the active page.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Hold<T: Real> {
+    /// The held node (global index).
     pub(crate) node: usize,
     /// Where the user wants the node (the pull's target is this on a leash, see
     /// [`BookSettings::pull_reach`]).
     pub(crate) target: T::Vec3,
+    /// A point of the drag plane (the held node at the grab).
     pub(crate) plane_point: T::Vec3,
+    /// The drag plane's unit normal (the camera's forward direction at the grab).
     pub(crate) plane_normal: T::Vec3,
+    /// The tent over the binding the drag target is projected onto.
     pub(crate) tent: Tent<T>,
 }
 
+/// The active page (or stack).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct ActivePage<T: Real> {
+    /// The block it was taken from.
     pub(crate) from: BlockSide,
+    /// The user's hold, `None` once released.
     pub(crate) hold: Option<Hold<T>>,
+    /// Consecutive steps, since the release, with every node slower than `merge_speed`.
     pub(crate) slow_frames: u32,
 }
+
 /// The record of one book step.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BookStepReport<T> {
@@ -164,6 +175,7 @@ pub struct Book<T: Real> {
     /// The terms of the rest view and of the active view.
     pub(crate) census: [TermCensus; 2],
 }
+
 /// What an input did.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
