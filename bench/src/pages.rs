@@ -96,7 +96,8 @@ pub fn play(model: &mut dyn PageModel<f64>, script: &TouchScript, grid: QuadGrid
         match step.status {
             PageStatus::Unreachable => out.unreachable += 1,
             PageStatus::Stalled => out.stalled += 1,
-            PageStatus::Moved => {}
+            // `Moved`, or a status this report does not count.
+            _ => {}
         }
         out.finger_gaps.extend(step.finger_gap);
     }

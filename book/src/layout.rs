@@ -343,3 +343,161 @@ pub fn distance(a: Point2, b: Point2) -> f64 {
     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
     math::sqrt::<f64>(dx * dx + dy * dy)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: f64, b: f64) -> bool {
+        (a - b).abs() <= 1e-12 * (1.0 + a.abs().max(b.abs()))
+    }
+
+    #[test]
+    fn binding_parameter_is_the_middle_of_the_active_stack() {
+        let layout = BookLayout::new(BookParams::default()).unwrap();
+        let total = layout.params.total_pages;
+        // q = (n_left + n_active / 2) / n_total.
+        assert_eq!(layout.binding_parameter(0, 0), 0.0);
+        assert_eq!(layout.binding_parameter(total, 0), 1.0);
+        assert_eq!(layout.binding_parameter(50, 0), 0.5);
+        assert_eq!(layout.binding_parameter(0, total), 0.5);
+        assert!(close(layout.binding_parameter(49, 1), 0.495));
+        // Taking pages from the right moves q towards the right, never past 1.
+        for left in 0..=total {
+            let q = layout.binding_parameter(left, total - left);
+            assert!((0.0..=1.0).contains(&q), "q = {q} for {left} left");
+        }
+    }
+
+    #[test]
+    fn midlines_start_at_the_binding_nodes_and_lie_flat() {
+        for cover in [true, false] {
+            let params = BookParams {
+                cover,
+                ..BookParams::default()
+            };
+            let layout = BookLayout::new(params).unwrap();
+            let [b1, b2] = layout.binding;
+            assert_eq!(layout.left[0], b1);
+            assert_eq!(layout.right[0], b2);
+            assert_eq!(layout.midline(BlockSide::Left)[0], b1);
+            assert_eq!(layout.midline(BlockSide::Right)[0], b2);
+            // The binding spans the thickness of all pages, at the cover's thickness.
+            let width = f64::from(params.total_pages) * params.page_thickness;
+            assert!(close(b2[0] - b1[0], width));
+            let y0 = if cover { params.cover_thickness } else { 0.0 };
+            assert_eq!([b1[1], b2[1]], [y0, y0]);
+            for (line, dir) in [(&layout.left, -1.0), (&layout.right, 1.0)] {
+                assert_eq!(line.len(), params.midline_nodes);
+                let end = line[line.len() - 1];
+                assert!(close(dir * (end[0] - line[0][0]), params.page_width));
+                assert!(line.iter().all(|p| p[1] == y0));
+            }
+            assert_eq!(layout.cover_ends.is_some(), cover);
+            assert_eq!(
+                layout.pages(BlockSide::Left) + layout.pages(BlockSide::Right),
+                params.total_pages
+            );
+        }
+    }
+
+    #[test]
+    fn material_normals_face_the_pages() {
+        // Both blocks lying flat have their pages on top.
+        assert_eq!(material_normal(BlockSide::Left, [-2.0, 0.0]), [0.0, 1.0]);
+        assert_eq!(material_normal(BlockSide::Right, [2.0, 0.0]), [0.0, 1.0]);
+        assert_eq!(material_normal(BlockSide::Left, [0.0, 0.0]), [0.0, 0.0]);
+        assert_eq!(
+            material_normal(BlockSide::Right, [f64::NAN, 1.0]),
+            [0.0, 0.0]
+        );
+    }
+
+    #[test]
+    fn offset_curve_keeps_its_distance() {
+        // A bent curve: straight, then rising at 45 degrees, then flat again.
+        let midline = [[0.0, 0.0], [1.0, 0.0], [2.0, 1.0], [3.0, 1.0], [4.0, 1.0]];
+        for side in [BlockSide::Left, BlockSide::Right] {
+            let distance = 0.25;
+            let offset = offset_curve(&midline, side, distance);
+            assert_eq!(offset.len(), midline.len());
+            for (a, b) in midline.iter().zip(&offset) {
+                assert!(close(super::distance(*a, *b), distance), "{a:?} -> {b:?}");
+            }
+            // Ends move along their one segment's normal.
+            let t = [midline[1][0] - midline[0][0], midline[1][1] - midline[0][1]];
+            let n = material_normal(side, t);
+            assert!(close(offset[0][0], distance * n[0]));
+            assert!(close(offset[0][1], distance * n[1]));
+        }
+        // Degenerate segments keep the nodes where they are.
+        let still = offset_curve(&[[1.0, 1.0], [1.0, 1.0]], BlockSide::Left, 1.0);
+        assert_eq!(still, [[1.0, 1.0], [1.0, 1.0]]);
+        assert!(offset_curve(&[], BlockSide::Right, 1.0).is_empty());
+    }
+
+    #[test]
+    fn resample_walks_the_arc_length_and_runs_on_past_the_end() {
+        let curve = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]];
+        let points = resample(&curve, 0.5, 6);
+        let expected = [
+            [0.0, 0.0],
+            [0.5, 0.0],
+            [1.0, 0.0],
+            [1.0, 0.5],
+            [1.0, 1.0],
+            [1.0, 1.5],
+        ];
+        assert_eq!(points.len(), expected.len());
+        for (p, e) in points.iter().zip(expected) {
+            assert!(close(p[0], e[0]) && close(p[1], e[1]), "{p:?} != {e:?}");
+        }
+        assert!(resample(&[], 1.0, 3).is_empty());
+        assert_eq!(resample(&[[2.0, 3.0]], 1.0, 2), [[2.0, 3.0], [2.0, 3.0]]);
+    }
+
+    #[test]
+    fn validate_names_the_first_bad_field() {
+        let ok = BookParams::default();
+        assert_eq!(ok.validate(), Ok(()));
+        let bad = |f: fn(&mut BookParams)| {
+            let mut p = ok;
+            f(&mut p);
+            p.validate().unwrap_err()
+        };
+        assert_eq!(bad(|p| p.total_pages = 0), LayoutError::NoPages);
+        assert_eq!(
+            bad(|p| p.left_pages = 101),
+            LayoutError::LeftPagesExceedTotal {
+                left: 101,
+                total: 100
+            }
+        );
+        assert_eq!(
+            bad(|p| p.page_width = f64::NAN),
+            LayoutError::NonPositive {
+                field: "page_width"
+            }
+        );
+        assert_eq!(
+            bad(|p| p.cover_overhang = -1.0),
+            LayoutError::NonPositive {
+                field: "cover_overhang"
+            }
+        );
+        assert_eq!(
+            bad(|p| p.page_width = 2.0 * MAX_EXTENT),
+            LayoutError::TooLarge {
+                field: "page_width"
+            }
+        );
+        assert_eq!(
+            bad(|p| p.midline_nodes = 2),
+            LayoutError::TooFewMidlineNodes { found: 2 }
+        );
+        // Zero is allowed where documented.
+        let mut flat = ok;
+        flat.cover_thickness = 0.0;
+        assert_eq!(flat.validate(), Ok(()));
+    }
+}

@@ -27,10 +27,14 @@
 extern crate alloc;
 
 pub mod bookmark;
+mod collide;
 pub mod effects;
 pub mod error;
+mod flip;
+mod grab;
 pub mod interaction;
 pub mod layout;
+mod merge;
 pub mod mesh;
 pub mod model;
 pub mod script;

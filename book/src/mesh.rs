@@ -65,12 +65,16 @@ impl<T: Real> Book<T> {
 
     /// [`Book::mesh`] without the restore on error.
     fn append_mesh(&self, out: &mut TriMesh) -> Result<(), MeshError> {
+        self.append_blocks(out)?;
+        self.append_cover(out)?;
+        self.append_pages(out)
+    }
+
+    /// Step 1 of [`Book::mesh`]: the page blocks.
+    fn append_blocks(&self, out: &mut TriMesh) -> Result<(), MeshError> {
         let layout = self.layout();
         let params = &layout.params;
-        let height = params.page_height();
-        let width = params.page_width;
         let [b1, b2] = layout.binding;
-
         for (side, direction) in [
             (BlockSide::Left, [b2[0] - b1[0], b2[1] - b1[1]]),
             (BlockSide::Right, [b1[0] - b2[0], b1[1] - b2[1]]),
@@ -84,49 +88,61 @@ impl<T: Real> Book<T> {
                 midline: &midline,
                 side,
                 thickness,
-                height,
+                height: params.page_height(),
                 binding_direction: direction,
-                page_width: width,
+                page_width: params.page_width,
                 fan: BINDING_FAN,
             };
             block_mesh(out, &profile)?;
         }
+        Ok(())
+    }
 
-        if params.cover && params.cover_thickness > 0.0 {
-            let nodes = self.nodes();
-            let x = &self.state().x;
-            let binding =
-                |side: BlockSide| self.midline(side).first().map_or([0.0; 2], |&p| xy::<T>(p));
-            for side in [BlockSide::Left, BlockSide::Right] {
-                let from = binding(side);
-                let end = nodes.cover_end(side == BlockSide::Right);
-                let to = x.get(end).map_or(from, |&p| xy::<T>(p));
-                let up = material_normal(side, [to[0] - from[0], to[1] - from[1]]);
-                let down = [-up[0], -up[1]];
-                cover_mesh(
-                    out,
-                    from,
-                    to,
-                    down,
-                    params.cover_thickness,
-                    height,
-                    params.cover_overhang,
-                )?;
-            }
+    /// Step 2 of [`Book::mesh`]: the cover boards and the spine.
+    fn append_cover(&self, out: &mut TriMesh) -> Result<(), MeshError> {
+        let params = &self.layout().params;
+        if !(params.cover && params.cover_thickness > 0.0) {
+            return Ok(());
+        }
+        let height = params.page_height();
+        let nodes = self.nodes();
+        let x = &self.state().x;
+        let binding =
+            |side: BlockSide| self.midline(side).first().map_or([0.0; 2], |&p| xy::<T>(p));
+        for side in [BlockSide::Left, BlockSide::Right] {
+            let from = binding(side);
+            let end = nodes.cover_end(side == BlockSide::Right);
+            let to = x.get(end).map_or(from, |&p| xy::<T>(p));
+            let up = material_normal(side, [to[0] - from[0], to[1] - from[1]]);
+            let down = [-up[0], -up[1]];
             cover_mesh(
                 out,
-                binding(BlockSide::Left),
-                binding(BlockSide::Right),
-                [0.0, -1.0],
+                from,
+                to,
+                down,
                 params.cover_thickness,
                 height,
                 params.cover_overhang,
             )?;
         }
+        cover_mesh(
+            out,
+            binding(BlockSide::Left),
+            binding(BlockSide::Right),
+            [0.0, -1.0],
+            params.cover_thickness,
+            height,
+            params.cover_overhang,
+        )
+    }
 
+    /// Steps 3 and 4 of [`Book::mesh`]: the active page and the pages in flight.
+    fn append_pages(&self, out: &mut TriMesh) -> Result<(), MeshError> {
         let Some(page) = self.page() else {
             return Ok(());
         };
+        let params = &self.layout().params;
+        let width = params.page_width;
         let grid = self.nodes().grid;
         let active = self.active_thickness().to_f64();
         if active > 0.0 {

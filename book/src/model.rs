@@ -75,10 +75,17 @@ impl NodeMap {
     pub fn is_bound(&self, node: usize) -> bool {
         node >= self.page_offset() && (node - self.page_offset()) % self.grid.nx == 0
     }
+    /// The page nodes off the bound column, in node order (the ones that collide).
+    #[inline]
+    pub fn free_page_nodes(&self) -> impl Iterator<Item = usize> + use<> {
+        let n = *self;
+        (n.page_offset()..n.total()).filter(move |&node| !n.is_bound(node))
+    }
 }
 
 /// The book's term families (see [`BookTerms::count`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Family {
     /// Gravity on block, cover and page nodes (eq. 12).
     Gravity,
@@ -161,9 +168,18 @@ impl<T: Real> BookTerms<T> {
             cover: p.cover,
             grid,
         };
+        let mut t = Self::empty(nodes, settings);
+        t.push_blocks(layout)?;
+        t.push_page(layout, settings)?;
+        t.push_pulls()?;
+        t.push_contacts()?;
+        Ok(t)
+    }
+
+    /// Every family empty, with its weight from `settings`; masses zero.
+    fn empty(nodes: NodeMap, settings: &BookSettings<T>) -> Self {
         let w = &settings.weights;
-        let m = nodes.midline;
-        let mut t = Self {
+        Self {
             nodes,
             masses: alloc::vec![T::ZERO; nodes.total()],
             effects: settings.effects,
@@ -189,31 +205,38 @@ impl<T: Real> BookTerms<T> {
             ],
             block_contacts: PotentialSet::new(T::ONE),
             page_contacts: PotentialSet::new(T::ONE),
-        };
-        // Blocks: inextensible midlines (eq. 6), curve bending at inner nodes (eq. 10; the
-        // binding nodes are left to the glue), gravity (eq. 12).
-        let fx = settings.effects;
+        }
+    }
+
+    /// Blocks: inextensible midlines (eq. 6), curve bending at inner nodes (eq. 10; the
+    /// binding nodes are left to the glue), the binding width, the cover boards, the
+    /// binding-midpoint fix (eq. 8), the glue (eq. 11) and gravity (eq. 12); none without
+    /// simulated blocks.
+    fn push_blocks(&mut self, layout: &BookLayout) -> Result<(), KernelError> {
+        let p = &layout.params;
+        let m = self.nodes.midline;
+        let fx = self.effects;
         let seg = T::from_f64(p.page_width / (m - 1) as f64);
         let block_rights: &[bool] = if fx.blocks { &[false, true] } else { &[] };
         for &right in block_rights {
             for k in 0..m - 1 {
-                let nodes = [t.nodes.block(right, k), t.nodes.block(right, k + 1)];
-                t.iso2d.push(Iso2d::new(seg)?, as_u32(nodes));
+                let nodes = [self.nodes.block(right, k), self.nodes.block(right, k + 1)];
+                self.iso2d.push(Iso2d::new(seg)?, as_u32(nodes));
             }
             for k in 1..m - 1 {
-                let nodes = [k, k - 1, k + 1].map(|q| t.nodes.block(right, q));
-                t.bend_blocks
+                let nodes = [k, k - 1, k + 1].map(|q| self.nodes.block(right, q));
+                self.bend_blocks
                     .push(curve_laplacian::new([seg, seg])?, as_u32(nodes));
             }
         }
         if fx.blocks {
             let binding_width = T::from_f64(layout.binding[1][0] - layout.binding[0][0]);
-            t.iso2d.push(Iso2d::new(binding_width)?, as_u32([0, m]));
+            self.iso2d.push(Iso2d::new(binding_width)?, as_u32([0, m]));
             if p.cover {
                 let board = T::from_f64(p.page_width + p.cover_overhang);
                 for right in [false, true] {
-                    let nodes = [t.nodes.block(right, 0), t.nodes.cover_end(right)];
-                    t.iso2d.push(Iso2d::new(board)?, as_u32(nodes));
+                    let nodes = [self.nodes.block(right, 0), self.nodes.cover_end(right)];
+                    self.iso2d.push(Iso2d::new(board)?, as_u32(nodes));
                 }
             }
             let mid = T::Vec3::new(
@@ -221,19 +244,30 @@ impl<T: Real> BookTerms<T> {
                 T::from_f64(layout.binding[0][1]),
                 T::ZERO,
             );
-            t.fix.push(PlanarFix(Fix::new(mid)?), as_u32([0, m]));
+            self.fix.push(PlanarFix(Fix::new(mid)?), as_u32([0, m]));
         }
         if fx.glue && fx.blocks {
-            t.glue.push(Glue::new(), as_u32([1, 0, m, m + 1]));
+            self.glue.push(Glue::new(), as_u32([1, 0, m, m + 1]));
         }
         if fx.gravity && fx.blocks {
-            for node in 0..t.nodes.page_offset() {
-                t.block_gravity
-                    .push(Gravity::new(t.g, T::ZERO)?, as_u32([node]));
+            for node in 0..self.nodes.page_offset() {
+                self.block_gravity
+                    .push(Gravity::new(self.g, T::ZERO)?, as_u32([node]));
             }
         }
-        // Active page: DOG constraints and DOG-Laplacian bending per star, binding of the
-        // bound column (eq. 7), iso3D on grid edges (eq. 13), gravity, the grab pull.
+        Ok(())
+    }
+
+    /// Active page: DOG constraints and DOG-Laplacian bending per star, binding of the
+    /// bound column (eq. 7), iso3D on grid edges (eq. 13) and gravity.
+    fn push_page(
+        &mut self,
+        layout: &BookLayout,
+        settings: &BookSettings<T>,
+    ) -> Result<(), KernelError> {
+        let p = &layout.params;
+        let grid = self.nodes.grid;
+        let m = self.nodes.midline;
         let spacing = [
             T::from_f64(p.page_width / settings.quads_across as f64),
             T::from_f64(p.page_height() / settings.quads_along as f64),
@@ -242,49 +276,64 @@ impl<T: Real> BookTerms<T> {
             let (ga, gb) = (grid.coords(a), grid.coords(b));
             if ga.1 == gb.1 { spacing[0] } else { spacing[1] }
         };
-        let po = t.nodes.page_offset();
+        let po = self.nodes.page_offset();
         for star in grid.stars() {
             match star {
                 Star::Inner(s) => {
-                    t.dog_inner
+                    self.dog_inner
                         .push(DogInner::default(), as_u32(s.map(|k| po + k)));
                     let rest = [1, 2, 3, 4].map(|k| rest_of(s[0], s[k]));
                     let lap = dog_laplacian::inner(rest)?;
-                    t.bend_inner.push(lap, as_u32(s.map(|k| po + k)));
+                    self.bend_inner.push(lap, as_u32(s.map(|k| po + k)));
                 }
                 Star::Boundary(s) => {
-                    t.dog_boundary
+                    self.dog_boundary
                         .push(DogBoundary::default(), as_u32(s.map(|k| po + k)));
                     let rest = [rest_of(s[0], s[1]), rest_of(s[0], s[3])];
                     let lap = dog_laplacian::boundary(rest)?;
-                    t.bend_boundary
+                    self.bend_boundary
                         .push(lap, as_u32([s[0], s[1], s[3]].map(|k| po + k)));
                 }
                 Star::Corner(_) => {}
             }
         }
         for j in 0..grid.nz {
-            let node = t.nodes.page(0, j);
-            t.binding.push(Binding::new(T::HALF)?, as_u32([node, 0, m]));
+            let node = self.nodes.page(0, j);
+            self.binding
+                .push(Binding::new(T::HALF)?, as_u32([node, 0, m]));
         }
         for [a, b] in grid.edges() {
-            t.iso3d
+            self.iso3d
                 .push(Iso3d::new(rest_of(a, b))?, as_u32([po + a, po + b]));
         }
-        if fx.gravity {
+        if self.effects.gravity {
             for k in 0..grid.len() {
-                t.page_gravity
-                    .push(Gravity::new(t.g, T::ZERO)?, as_u32([po + k]));
+                self.page_gravity
+                    .push(Gravity::new(self.g, T::ZERO)?, as_u32([po + k]));
             }
         }
-        for k in grid.second_ring() {
+        Ok(())
+    }
+
+    /// The grab pulls (eq. 14), one per node of the page's second ring, all off.
+    fn push_pulls(&mut self) -> Result<(), KernelError> {
+        let po = self.nodes.page_offset();
+        for k in self.nodes.grid.second_ring() {
             let pull = Pull {
                 kernel: Positional::new(T::Vec3::ZERO)?,
                 active: false,
             };
-            t.pull.push(pull, as_u32([po + k]));
-            t.pull_nodes.push(po + k);
+            self.pull.push(pull, as_u32([po + k]));
+            self.pull_nodes.push(po + k);
         }
+        Ok(())
+    }
+
+    /// The contact springs, all off: one per block and cover node (with simulated blocks)
+    /// and one per page node, when collisions are on.
+    fn push_contacts(&mut self) -> Result<(), KernelError> {
+        let fx = self.effects;
+        let po = self.nodes.page_offset();
         let off = Contact {
             kernel: ContactPlane::new(
                 T::Vec3::ZERO,
@@ -296,18 +345,18 @@ impl<T: Real> BookTerms<T> {
         };
         let contact_nodes = match (fx.collides(), fx.blocks) {
             (false, _) => 0..0,
-            (true, true) => 0..t.nodes.total(),
-            (true, false) => po..t.nodes.total(),
+            (true, true) => 0..self.nodes.total(),
+            (true, false) => po..self.nodes.total(),
         };
         for node in contact_nodes {
             let set = if node < po {
-                &mut t.block_contacts
+                &mut self.block_contacts
             } else {
-                &mut t.page_contacts
+                &mut self.page_contacts
             };
             set.push(off, as_u32([node]));
         }
-        Ok(t)
+        Ok(())
     }
 
     /// The number of terms of `family`.
@@ -529,4 +578,145 @@ fn visit_blocks<T: Real, V: TermVisitor<T>>(t: &BookTerms<T>, v: &mut V) {
     v.potentials(&t.block_contacts);
     v.constraints(&t.iso2d);
     v.constraints(&t.fix);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{BookParams, Effects};
+
+    fn map(cover: bool) -> NodeMap {
+        NodeMap {
+            midline: 5,
+            cover,
+            grid: QuadGrid::new(3, 2).unwrap(),
+        }
+    }
+
+    #[test]
+    fn node_map_numbers_every_node_once() {
+        for cover in [true, false] {
+            let n = map(cover);
+            let mut all: Vec<usize> = (0..n.midline)
+                .flat_map(|k| [n.block(false, k), n.block(true, k)])
+                .collect();
+            if cover {
+                all.extend([n.cover_end(false), n.cover_end(true)]);
+            }
+            assert_eq!(all.len(), n.page_offset());
+            for j in 0..n.grid.nz {
+                for i in 0..n.grid.nx {
+                    all.push(n.page(i, j));
+                }
+            }
+            all.sort_unstable();
+            assert_eq!(all, (0..n.total()).collect::<Vec<_>>());
+        }
+    }
+
+    #[test]
+    fn node_map_layout_is_the_documented_one() {
+        let n = map(true);
+        // Left midline 0..m, right m..2m, cover ends, then the grid i + nx j.
+        assert_eq!((n.block(false, 0), n.block(false, 4)), (0, 4));
+        assert_eq!((n.block(true, 0), n.block(true, 4)), (5, 9));
+        assert_eq!((n.cover_end(false), n.cover_end(true)), (10, 11));
+        assert_eq!(n.page_offset(), 12);
+        assert_eq!((n.grid.nx, n.grid.nz), (4, 3));
+        assert_eq!(n.page(0, 0), 12);
+        assert_eq!(n.page(3, 0), 15);
+        assert_eq!(n.page(1, 2), 12 + 1 + 4 * 2);
+        assert_eq!(n.total(), 12 + 12);
+        assert_eq!(map(false).page_offset(), 10);
+    }
+
+    #[test]
+    fn only_column_zero_is_bound() {
+        let n = map(true);
+        for node in 0..n.total() {
+            let bound = node >= n.page_offset() && n.grid.coords(node - n.page_offset()).0 == 0;
+            assert_eq!(n.is_bound(node), bound, "node {node}");
+        }
+        let free: Vec<usize> = n.free_page_nodes().collect();
+        assert_eq!(free.len(), n.grid.len() - n.grid.nz);
+        assert!(free.windows(2).all(|w| w[0] < w[1]));
+        assert!(free.iter().all(|&k| k >= n.page_offset() && !n.is_bound(k)));
+    }
+
+    fn settings(effects: Effects) -> BookSettings<f64> {
+        BookSettings {
+            params: BookParams {
+                midline_nodes: 5,
+                ..BookParams::default()
+            },
+            quads_across: 3,
+            quads_along: 2,
+            effects,
+            ..BookSettings::default()
+        }
+    }
+
+    fn terms(effects: Effects) -> BookTerms<f64> {
+        let s = settings(effects);
+        let layout = BookLayout::new(s.params).unwrap();
+        let grid = QuadGrid::new(s.quads_across, s.quads_along).unwrap();
+        BookTerms::new(&layout, &s, grid).unwrap()
+    }
+
+    #[test]
+    fn term_counts_follow_the_grid_and_the_midlines() {
+        let t = terms(Effects::ALL);
+        let (m, grid) = (t.nodes.midline, t.nodes.grid);
+        // Links: 2 (m - 1) midline segments, the binding width, two cover boards.
+        assert_eq!(t.count(Family::BlockLinks), 2 * (m - 1) + 1 + 2);
+        assert_eq!(t.count(Family::BlockBending), 2 * (m - 2));
+        assert_eq!(t.count(Family::BindingFix), 1);
+        assert_eq!(t.count(Family::Glue), 1);
+        assert_eq!(t.count(Family::Binding), grid.nz);
+        assert_eq!(t.count(Family::PageIso), grid.edges().len());
+        let corners = 4;
+        assert_eq!(t.count(Family::Dog), grid.stars().len() - corners);
+        assert_eq!(t.count(Family::PageBending), t.count(Family::Dog));
+        assert_eq!(t.count(Family::Gravity), t.nodes.total());
+        assert_eq!(t.count(Family::Contacts), t.nodes.total());
+        assert_eq!(t.count(Family::Pull), grid.second_ring().len());
+        assert_eq!(t.pull_nodes().len(), t.count(Family::Pull));
+        assert!(t.pull_nodes().iter().all(|&k| k >= t.nodes.page_offset()));
+    }
+
+    #[test]
+    fn fixed_blocks_build_no_block_terms() {
+        let mut fx = Effects::ALL;
+        fx.blocks = false;
+        let t = terms(fx);
+        for family in [
+            Family::BlockLinks,
+            Family::BlockBending,
+            Family::BindingFix,
+            Family::Glue,
+        ] {
+            assert_eq!(t.count(family), 0, "{family:?}");
+        }
+        assert_eq!(t.count(Family::Gravity), t.nodes.grid.len());
+        assert_eq!(t.count(Family::Contacts), t.nodes.grid.len());
+    }
+
+    #[test]
+    fn masses_spread_and_the_pull_holds_one_node() {
+        let mut t = terms(Effects::ALL);
+        let n = t.nodes;
+        t.set_masses(5.0, 10.0, 3.0, 1.0);
+        let m = n.midline as f64;
+        assert_eq!(t.mass(n.block(false, 1)), 5.0 / m);
+        assert_eq!(t.mass(n.block(true, 1)), 10.0 / m);
+        assert_eq!(t.mass(n.cover_end(true)), 3.0);
+        assert_eq!(t.mass(n.page(1, 1)), 1.0 / n.grid.len() as f64);
+        let [a, b] = [t.pull_nodes()[0], t.pull_nodes()[1]];
+        let target = <f64 as Real>::Vec3::new(1.0, 2.0, 3.0);
+        t.set_pull(Some((a, target)));
+        assert_eq!(t.pull_target(a), Some(target));
+        assert_eq!(t.pull_target(b), None);
+        t.set_pull(None);
+        assert_eq!(t.pull_target(a), None);
+    }
 }

@@ -194,3 +194,136 @@ impl<T: Real> BookSettings<T> {
         ]
     }
 }
+
+/// `Ok` when `ok`, else [`crate::BookError::InvalidSetting`] naming `field` and `requirement`.
+fn check(ok: bool, field: &'static str, requirement: &'static str) -> Result<(), crate::BookError> {
+    if ok {
+        Ok(())
+    } else {
+        Err(crate::BookError::InvalidSetting { field, requirement })
+    }
+}
+
+impl<T: Real> BookSettings<T> {
+    /// Checks every field.
+    ///
+    /// # Errors
+    /// The first unusable field.
+    pub fn validate(&self) -> Result<(), crate::BookError> {
+        self.params.validate()?;
+        self.effects.validate()?;
+        self.solver.validate()?;
+        let positive = |v: T| v.is_finite() && v > T::ZERO;
+        let non_negative = |v: T| v.is_finite() && v >= T::ZERO;
+        check(self.quads_across >= 2, "quads_across", "at least 2")?;
+        check(self.quads_along >= 2, "quads_along", "at least 2")?;
+        check(
+            self.quads_across * self.quads_along <= 1 << 16,
+            "quads_across",
+            "at most 65536 quads in all",
+        )?;
+        let w = &self.weights;
+        for (field, v) in [
+            ("weights.bend_page", w.bend_page),
+            ("weights.bend_blocks", w.bend_blocks),
+            ("weights.glue", w.glue),
+            ("weights.iso_page", w.iso_page),
+            ("weights.pull", w.pull),
+            ("gravity", self.gravity),
+            ("air_drag", self.air_drag),
+            ("contact_stiffness", self.contact_stiffness),
+        ] {
+            check(non_negative(v), field, "finite and >= 0")?;
+        }
+        for (field, v) in [
+            ("page_mass", self.page_mass),
+            ("cover_mass", self.cover_mass),
+            ("min_block_mass", self.min_block_mass),
+            ("merge_speed", self.merge_speed),
+            ("pull_reach", self.pull_reach),
+            ("settle_tolerance", self.settle_tolerance),
+            ("constraint_tolerance", self.constraint_tolerance),
+        ] {
+            check(positive(v), field, "finite and > 0")?;
+        }
+        check(
+            positive(self.tent_height) && self.tent_height <= T::ONE,
+            "tent_height",
+            "in (0, 1]",
+        )?;
+        check(
+            self.contact_pin_weight.is_finite() && self.contact_pin_weight >= T::ONE,
+            "contact_pin_weight",
+            "finite and >= 1",
+        )?;
+        check(
+            (1..=16).contains(&self.collision_rounds),
+            "collision_rounds",
+            "between 1 and 16",
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::BookError;
+
+    fn field(settings: BookSettings<f64>) -> &'static str {
+        match settings.validate() {
+            Err(BookError::InvalidSetting { field, .. }) => field,
+            other => panic!("expected an invalid setting, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn the_defaults_are_valid_in_both_precisions() {
+        assert_eq!(BookSettings::<f64>::default().validate(), Ok(()));
+        assert_eq!(BookSettings::<f32>::default().validate(), Ok(()));
+    }
+
+    #[test]
+    fn validate_names_the_field() {
+        let ok = BookSettings::<f64>::default();
+        let with = |f: fn(&mut BookSettings<f64>)| {
+            let mut s = ok;
+            f(&mut s);
+            s
+        };
+        assert_eq!(field(with(|s| s.quads_across = 1)), "quads_across");
+        assert_eq!(field(with(|s| s.quads_along = 1)), "quads_along");
+        assert_eq!(field(with(|s| s.quads_along = 70_000)), "quads_across");
+        assert_eq!(field(with(|s| s.weights.glue = -1.0)), "weights.glue");
+        assert_eq!(field(with(|s| s.gravity = f64::NAN)), "gravity");
+        assert_eq!(field(with(|s| s.page_mass = 0.0)), "page_mass");
+        assert_eq!(field(with(|s| s.tent_height = 1.5)), "tent_height");
+        assert_eq!(
+            field(with(|s| s.contact_pin_weight = 0.5)),
+            "contact_pin_weight"
+        );
+        assert_eq!(field(with(|s| s.collision_rounds = 0)), "collision_rounds");
+        // Zero is allowed for the non-negative fields.
+        assert_eq!(with(|s| s.gravity = 0.0).validate(), Ok(()));
+        // The layout is checked first.
+        let layout = with(|s| {
+            s.params.total_pages = 0;
+            s.quads_across = 1;
+        });
+        assert!(matches!(layout.validate(), Err(BookError::Layout(_))));
+    }
+
+    #[test]
+    fn the_reference_grid_has_unit_iso_scale() {
+        let s = BookSettings::<f64>::default();
+        assert!((s.iso_scale() - 1.0).abs() < 1e-12);
+        let fine = BookSettings::<f64> {
+            quads_across: 16,
+            quads_along: 22,
+            ..s
+        };
+        assert!((fine.iso_scale() - 4.0).abs() < 1e-12);
+        let [across, along] = s.grid_spacing();
+        assert!((across * 8.0 - s.params.page_width).abs() < 1e-12);
+        assert!((along * 11.0 - s.params.page_height()).abs() < 1e-12);
+    }
+}

@@ -209,6 +209,10 @@ enum FolioPhase
      * The active page was released and falling or settling.
      */
     FOLIO_PHASE_RELEASED = 2,
+    /**
+     * A phase this version of the C API does not name.
+     */
+    FOLIO_PHASE_OTHER = 3,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L

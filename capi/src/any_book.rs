@@ -1,8 +1,8 @@
 //! A book of either precision behind one type, so that a handle can name both.
 
-use folio_book::{Book, BookError, DragOutcome, GrabOutcome, PageCounts};
+use folio_book::{Book, BookError, DragOutcome, PageCounts};
+use folio_geometry::QuadGrid;
 use folio_geometry::mesh::{MeshError, TriMesh};
-use folio_geometry::{BlockSide, QuadGrid};
 use folio_kernels::{Real, Vec3Ops};
 
 use crate::step::FolioStepReport;
@@ -16,15 +16,17 @@ pub(crate) enum AnyBook {
     F64(Book<f64>),
 }
 
-/// Runs `$body` with `$b` bound to the book of either precision.
+/// Runs `$body` with `$b` bound to the book of either precision: a [`Book`] method whose
+/// signature names no precision is called through this, not wrapped again.
 macro_rules! dispatch {
     ($any:expr, $b:ident => $body:expr) => {
         match $any {
-            AnyBook::F32($b) => $body,
-            AnyBook::F64($b) => $body,
+            $crate::any_book::AnyBook::F32($b) => $body,
+            $crate::any_book::AnyBook::F64($b) => $body,
         }
     };
 }
+pub(crate) use dispatch;
 
 /// `p` in precision `T`.
 fn vec3<T: Real>(p: [f64; 3]) -> T::Vec3 {
@@ -43,27 +45,9 @@ fn step<T: Real>(book: &mut Book<T>) -> Result<FolioStepReport, BookError> {
 }
 
 impl AnyBook {
-    /// [`Book::grab_at`].
-    pub fn grab_at(
-        &mut self,
-        side: BlockSide,
-        at: [f64; 2],
-        pages: u32,
-    ) -> Result<GrabOutcome, BookError> {
-        dispatch!(self, b => b.grab_at(side, at, pages))
-    }
-
     /// [`Book::drag_to`] with the target in `f64`.
     pub fn drag_to(&mut self, target: [f64; 3]) -> Result<DragOutcome, BookError> {
         dispatch!(self, b => b.drag_to(vec3_of(b, target)))
-    }
-
-    /// The page's width $W$ and height $H$ (page units).
-    pub fn page_size(&self) -> [f64; 2] {
-        dispatch!(self, b => {
-            let p = b.layout().params;
-            [p.page_width, p.page_height()]
-        })
     }
 
     /// [`Book::counts`].

@@ -3,6 +3,7 @@
 use folio_book::{DragOutcome, GrabOutcome};
 use folio_geometry::BlockSide;
 
+use crate::any_book::dispatch;
 use crate::failure::Failure;
 use crate::guard;
 use crate::handle::FolioBookHandle;
@@ -54,10 +55,13 @@ pub extern "C" fn folio_book_grab(
             return Err(Failure::invalid("`pages` must be at least 1"));
         }
         registry::with_entry(handle, |e| {
-            // Clamped onto the page: far points would overflow the book's squared distances.
-            let [w, h] = e.book.page_size();
-            let at = [u.clamp(0.0, w), v.clamp(0.0, h)];
-            let outcome = e.book.grab_at(side, at, pages).map_err(Failure::book)?;
+            let outcome = dispatch!(&mut e.book, b => {
+                // Clamped onto the page: far points would overflow the book's squared
+                // distances.
+                let [w, h] = b.page_size();
+                b.grab_at(side, [u.clamp(0.0, w), v.clamp(0.0, h)], pages)
+            })
+            .map_err(Failure::book)?;
             match outcome {
                 GrabOutcome::Grabbed { .. } => {
                     e.touch();
@@ -73,7 +77,8 @@ pub extern "C" fn folio_book_grab(
                         format!("the {name} block holds {held} pages, {pages} asked for"),
                     ))
                 }
-                GrabOutcome::Missed => Err(Failure::invalid("the grab missed the book")),
+                // `Missed`, or any other outcome that grabbed nothing.
+                _ => Err(Failure::invalid("the grab missed the book")),
             }
         })
     })
@@ -94,7 +99,8 @@ pub extern "C" fn folio_book_drag(handle: FolioBookHandle, x: f64, y: f64, z: f6
         registry::with_entry(handle, |e| {
             match e.book.drag_to([x, y, z]).map_err(Failure::book)? {
                 DragOutcome::Moved => Ok(()),
-                DragOutcome::NotHeld | DragOutcome::Missed => Err(not_held()),
+                // `NotHeld` (there is no ray here to miss), or any other outcome.
+                _ => Err(not_held()),
             }
         })
     })

@@ -42,6 +42,8 @@ pub enum FolioPhase {
     Held = 1,
     /// The active page was released and falling or settling.
     Released = 2,
+    /// A phase this version of the C API does not name.
+    Other = 3,
 }
 
 /// The record of one `folio_book_step`. The page measures are of the active page after the
@@ -109,6 +111,7 @@ impl FolioStepReport {
             Phase::AtRest => FolioPhase::AtRest,
             Phase::Held => FolioPhase::Held,
             Phase::Released => FolioPhase::Released,
+            _ => FolioPhase::Other,
         };
         let (stretch_max, stretch_rms) = book
             .stretch()

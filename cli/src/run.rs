@@ -304,6 +304,7 @@ pub fn run(
                 PageStatus::Moved => "Moved",
                 PageStatus::Unreachable => "Unreachable",
                 PageStatus::Stalled => "Stalled",
+                _ => "Other",
             };
             let nonfinite = !samples.iter().all(|p| p.is_finite());
             records.push(FrameRecord {

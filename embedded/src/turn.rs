@@ -142,6 +142,7 @@ fn phase_name(phase: Phase) -> &'static str {
         Phase::AtRest => "rest",
         Phase::Held => "held",
         Phase::Released => "released",
+        _ => "other",
     }
 }
 

@@ -98,6 +98,7 @@ impl core::error::Error for PageError {}
 
 /// How a frame went.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum PageStatus {
     /// The page moved as asked (or is at rest).
     Moved,

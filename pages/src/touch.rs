@@ -48,6 +48,7 @@ impl core::error::Error for TouchScriptError {}
 
 /// What the script asks for at one frame, before the step.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Touch {
     /// Grab `at` with the finger at `finger`.
     Grab {

@@ -94,6 +94,7 @@ fn play_frame<T: Real>(
         Touch::Drag(finger) => page.drag(vec3::<T>(finger)).unwrap(),
         Touch::Release => page.release(),
         Touch::None => {}
+        other => panic!("a touch this test does not play: {other:?}"),
     }
     page.step().unwrap()
 }

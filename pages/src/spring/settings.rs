@@ -24,6 +24,7 @@ pub const MAX_KEY_FRAMES: usize = 1_000_000;
 
 /// How a grab holds the page.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Grip {
     /// The whole particle column nearest the grabbed $u$ moves rigidly with the finger, as
     /// the seed's experiment moves its six edge particles (Sec. 3.1 step 2); the dog-ear
@@ -43,6 +44,7 @@ pub enum Grip {
 
 /// The time integrator of the free particles.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Integrator {
     /// The seed's semi-implicit (symplectic) Euler, Sec. 3.1 steps 3-5:
     /// $v^{n+1} = v^n + h F(x^n, v^n)/m$, $x^{n+1} = x^n + h v^{n+1}$. Explicit in the forces:

@@ -1,0 +1,308 @@
+//! Collision handling (seed `000_…` Sec. 3.4) and the constraint projection that follows
+//! it: cover and binding on the table, blocks on the cover (or the table), the active page
+//! on the blocks, each node pushed out inelastically, pinned in the projection and held on
+//! the surface by a contact spring in the next step.
+
+use folio_geometry::{BlockSide, Contacts, Floor, Obstacle, Wall};
+use folio_kernels::{Real, Vec3Ops};
+
+use super::error::BookError;
+use super::model::{ActiveView, RestView};
+use super::simulation::Book;
+use folio_solvers::step::Correction;
+
+impl<T: Real> Book<T> {
+    /// Collision handling and the constraint projection after a step that advanced: the
+    /// last step's contacts released, up to `collision_rounds` detect/resolve rounds, then
+    /// projection and collision in turn. Adds to `contacts` and `correction`; returns the
+    /// rounds that found contacts.
+    pub(crate) fn collide_and_project(
+        &mut self,
+        contacts: &mut Contacts<T>,
+        correction: &mut Correction<T>,
+    ) -> Result<u32, BookError> {
+        self.pushed.iter_mut().for_each(|p| *p = false);
+        self.terms.clear_contacts();
+        let mut rounds = self.collide(contacts, self.settings.collision_rounds);
+        // Projection and collision alternate: a node the projection moves into a block
+        // is pushed out and pinned in the next projection, up to twice
+        // `collision_rounds` passes, so the step ends with both the constraints and the
+        // contacts met (a landing page needs more passes than a resting one).
+        for pass in 0..2 * self.settings.collision_rounds {
+            let c = self.project()?;
+            if pass == 0 {
+                correction.before = c.before;
+            }
+            correction.steps += c.steps;
+            correction.after = c.after;
+            if c.steps == 0 {
+                break;
+            }
+            let found = self.collide(contacts, 1);
+            rounds += found;
+            if found == 0 {
+                break;
+            }
+        }
+        Ok(rounds)
+    }
+
+    /// One [`folio_solvers::Solver::project_constraints`] of the current view, the nodes
+    /// pushed in this step pinned.
+    fn project(&mut self) -> Result<Correction<T>, BookError> {
+        let s = &self.settings;
+        let (pin, tol, max) = (
+            s.contact_pin_weight,
+            s.constraint_tolerance,
+            s.max_corrections,
+        );
+        let c = if self.active.is_some() {
+            self.active_solver.project_constraints(
+                &ActiveView(&self.terms),
+                &mut self.state,
+                &self.pushed,
+                pin,
+                tol,
+                max,
+            )?
+        } else {
+            self.rest_solver.project_constraints(
+                &RestView(&self.terms),
+                &mut self.state,
+                &self.pushed,
+                pin,
+                tol,
+                max,
+            )?
+        };
+        Ok(c)
+    }
+
+    /// Up to `max_rounds` detect/resolve rounds, stopping at the first that finds nothing;
+    /// returns the rounds that found contacts.
+    fn collide(&mut self, total: &mut Contacts<T>, max_rounds: u32) -> u32 {
+        if !self.settings.effects.collides() {
+            return 0;
+        }
+        let mut rounds = 0;
+        for _ in 0..max_rounds {
+            let c = self.resolve_contacts();
+            total.tested += c.tested;
+            if c.resolved == 0 {
+                break;
+            }
+            rounds += 1;
+            total.resolved += c.resolved;
+            if c.max_depth > total.max_depth {
+                total.max_depth = c.max_depth;
+            }
+        }
+        rounds
+    }
+
+    /// Pushes `node` out of `obstacle`, adding the displacement over the time step to its
+    /// velocity (an inelastic contact); the node is pinned in this step's projection and
+    /// held on the obstacle's plane by a contact spring in the next step.
+    fn push_node(&mut self, node: usize, obstacle: &impl Obstacle<T>) -> Option<T> {
+        let before = self.state.x[node];
+        let depth = obstacle.resolve(&mut self.state.x[node])?;
+        self.pushed[node] = true;
+        let k = self.settings.contact_stiffness * self.terms.mass(node);
+        self.terms.set_contact(node, obstacle.contact_plane(k));
+        let h = self.settings.solver.time_step;
+        self.state.v[node] += (self.state.x[node] - before) / h;
+        Some(depth)
+    }
+
+    /// The wall of segment `k` of the block on `side`, on the block's material side, with
+    /// clearance `clearance`.
+    fn block_wall(&self, side: BlockSide, k: usize, clearance: T) -> Option<Wall<T>> {
+        let line = self.midline(side);
+        let (a, b) = (line[k], line[k + 1]);
+        let d = b - a;
+        let toward = match side {
+            BlockSide::Left => T::Vec3::new(d.y(), -d.x(), T::ZERO),
+            BlockSide::Right => T::Vec3::new(-d.y(), d.x(), T::ZERO),
+        };
+        let mut wall = Wall::new(a, b, toward, clearance)?;
+        wall.open_end = k + 2 == line.len();
+        Some(wall)
+    }
+
+    /// The blocks' part of [`Book::resolve_contacts`]: cover and binding on the table,
+    /// blocks on the cover (or the table).
+    fn resolve_block_contacts(&mut self, c: &mut Contacts<T>) {
+        let n = self.terms.nodes;
+        let up = T::Vec3::new(T::ZERO, T::ONE, T::ZERO);
+        let y0 = T::from_f64(if n.cover {
+            self.layout.params.cover_thickness
+        } else {
+            0.0
+        });
+        let table = Floor { level: y0 };
+        let lifted: [usize; 4] = if n.cover {
+            [
+                n.block(false, 0),
+                n.block(true, 0),
+                n.cover_end(false),
+                n.cover_end(true),
+            ]
+        } else {
+            [
+                n.block(false, 0),
+                n.block(true, 0),
+                n.block(false, 0),
+                n.block(true, 0),
+            ]
+        };
+        for node in lifted {
+            c.record(self.push_node(node, &table));
+        }
+        for side in [BlockSide::Left, BlockSide::Right] {
+            let right = side == BlockSide::Right;
+            let board = n.cover.then(|| {
+                let a = self.state.x[n.block(right, 0)];
+                Wall::new(a, self.state.x[n.cover_end(right)], up, T::ZERO)
+            });
+            for k in 1..n.midline {
+                let node = n.block(right, k);
+                let depth = match board {
+                    Some(Some(wall)) => self.push_node(node, &wall),
+                    Some(None) => None,
+                    None => self.push_node(node, &table),
+                };
+                c.record(depth);
+            }
+        }
+    }
+
+    /// Walls the active page collides with: one per midline segment of each block.
+    fn page_walls(&self) -> usize {
+        2 * (self.terms.nodes.midline - 1)
+    }
+
+    /// Wall `w` (`0..page_walls()`) the active page collides with: segment `w` of the left
+    /// block's midline, then segment `w - (m - 1)` of the right block's, with the clearance
+    /// $t_{block} + t_{active}/2$ (seed Sec. 3.4). `None` for a degenerate segment.
+    fn page_wall(&self, w: usize) -> Option<Wall<T>> {
+        let segments = self.terms.nodes.midline - 1;
+        let side = if w < segments {
+            BlockSide::Left
+        } else {
+            BlockSide::Right
+        };
+        let half = self.active_thickness() * T::HALF;
+        let clearance = self.block_thickness(side) + half;
+        self.block_wall(side, w % segments, clearance)
+    }
+
+    /// One detect/resolve round (seed Sec. 3.4): cover and binding on the table, blocks on
+    /// the cover (or the table) when the blocks are simulated, the active page on the
+    /// blocks.
+    fn resolve_contacts(&mut self) -> Contacts<T> {
+        let mut c = Contacts::default();
+        if self.settings.effects.blocks {
+            self.resolve_block_contacts(&mut c);
+        }
+        if self.active.is_some() {
+            let n = self.terms.nodes;
+            for w in 0..self.page_walls() {
+                let Some(wall) = self.page_wall(w) else {
+                    continue;
+                };
+                for node in n.free_page_nodes() {
+                    c.record(self.push_node(node, &wall));
+                }
+            }
+        }
+        c
+    }
+
+    /// Deepest penetration of an active-page node (bound column excepted) into a block's
+    /// clearance band: block thickness plus half the active thickness (seed Sec. 3.4).
+    #[must_use]
+    pub fn penetration(&self) -> Option<T> {
+        self.page()?;
+        let n = self.terms.nodes;
+        let mut worst = T::ZERO;
+        for w in 0..self.page_walls() {
+            let Some(wall) = self.page_wall(w) else {
+                continue;
+            };
+            for node in n.free_page_nodes() {
+                if let Some(d) = wall.penetration(self.state.x[node]) {
+                    if d > worst {
+                        worst = d;
+                    }
+                }
+            }
+        }
+        Some(worst)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::{Book, BookSettings};
+    use folio_geometry::BlockSide;
+    use folio_kernels::Vec3Ops;
+
+    /// The default book, unsettled.
+    fn book() -> Book<f64> {
+        Book::new(BookSettings {
+            settle_steps: 0,
+            ..BookSettings::default()
+        })
+        .unwrap()
+    }
+
+    #[test]
+    fn page_walls_run_along_the_left_then_the_right_midline() {
+        let b = book();
+        let segments = b.nodes().midline - 1;
+        assert_eq!(b.page_walls(), 2 * segments);
+        for w in 0..b.page_walls() {
+            let (side, k) = if w < segments {
+                (BlockSide::Left, w)
+            } else {
+                (BlockSide::Right, w - segments)
+            };
+            let wall = b
+                .page_wall(w)
+                .expect("the flat midlines have no degenerate segment");
+            let line = b.midline(side);
+            assert_eq!(wall.a, line[k]);
+            assert_eq!(wall.along, line[k + 1] - line[k]);
+            // Block thickness plus half the active thickness (none at rest).
+            assert_eq!(wall.clearance, b.block_thickness(side));
+            // Only a block's last segment reaches on past the fore-edge.
+            assert_eq!(wall.open_end, k + 1 == segments, "wall {w}");
+            // The allowed side is the pages' side: up, for the flat book.
+            assert!(wall.normal.y() > 0.0);
+        }
+    }
+
+    #[test]
+    fn a_node_pushed_out_is_pinned_and_held_by_a_spring() {
+        let mut b = book();
+        let n = b.nodes();
+        let node = n.block(true, 3);
+        let floor = folio_geometry::Floor {
+            level: b.state.x[node].y() + 1.0,
+        };
+        let depth = b
+            .push_node(node, &floor)
+            .expect("the node is below the floor");
+        assert!((depth - 1.0).abs() < 1e-12);
+        assert!(b.pushed[node]);
+        assert!((b.state.x[node].y() - floor.level).abs() < 1e-12);
+        // The displacement over the time step went into the velocity.
+        let h = b.settings.solver.time_step;
+        assert!((b.state.v[node].y() - 1.0 / h).abs() < 1e-9);
+        // A node above the floor is left alone.
+        assert_eq!(
+            b.push_node(n.block(false, 3), &folio_geometry::Floor { level: -1.0 }),
+            None
+        );
+    }
+}
