@@ -9,6 +9,18 @@ use folio_solvers::settings::Settings;
 
 /// Weights of the potentials of seed `000_…` eq. 9-14 at the seed's 11x8 grid
 /// (dimensionless multipliers of the unweighted kernels).
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(
+        default,
+        deny_unknown_fields,
+        bound(
+            serialize = "T: serde::Serialize",
+            deserialize = "T: folio_kernels::Real + serde::Deserialize<'de>"
+        )
+    )
+)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Weights<T> {
     /// $w_{\mathrm{bend3D}}$, DOG-Laplacian bending of the active page (120).
@@ -21,6 +33,32 @@ pub struct Weights<T> {
     pub iso_page: T,
     /// $w_{\mathrm{pos}}$, the grab pull (400).
     pub pull: T,
+}
+
+impl<T: Copy> Weights<T> {
+    /// Every weight with its path from [`BookSettings`] (`"weights.glue"`), in field order.
+    #[must_use]
+    pub fn named(&self) -> [(&'static str, T); 5] {
+        [
+            ("weights.bend_page", self.bend_page),
+            ("weights.bend_blocks", self.bend_blocks),
+            ("weights.glue", self.glue),
+            ("weights.iso_page", self.iso_page),
+            ("weights.pull", self.pull),
+        ]
+    }
+
+    /// The same weights in another precision (or any other map of each weight).
+    #[must_use]
+    pub fn map<U>(self, f: impl Fn(T) -> U) -> Weights<U> {
+        Weights {
+            bend_page: f(self.bend_page),
+            bend_blocks: f(self.bend_blocks),
+            glue: f(self.glue),
+            iso_page: f(self.iso_page),
+            pull: f(self.pull),
+        }
+    }
 }
 
 impl<T: Real> Default for Weights<T> {
@@ -222,17 +260,12 @@ impl<T: Real> BookSettings<T> {
             "quads_across",
             "at most 65536 quads in all",
         )?;
-        let w = &self.weights;
-        for (field, v) in [
-            ("weights.bend_page", w.bend_page),
-            ("weights.bend_blocks", w.bend_blocks),
-            ("weights.glue", w.glue),
-            ("weights.iso_page", w.iso_page),
-            ("weights.pull", w.pull),
+        let others = [
             ("gravity", self.gravity),
             ("air_drag", self.air_drag),
             ("contact_stiffness", self.contact_stiffness),
-        ] {
+        ];
+        for (field, v) in self.weights.named().into_iter().chain(others) {
             check(non_negative(v), field, "finite and >= 0")?;
         }
         for (field, v) in [

@@ -11,6 +11,7 @@
 
 extern crate alloc;
 
+pub mod book;
 pub mod builtin;
 pub mod events;
 pub mod fixtures;

@@ -3,6 +3,7 @@
 
 use core::ops::Range;
 
+use folio_book::{BookParams, Weights};
 use folio_tearing::TearSettings;
 use folio_tearing::sheet::SheetSettings;
 use serde::Deserialize;
@@ -28,8 +29,10 @@ pub struct Scene {
     /// The effects to simulate (default: every effect the model has; see
     /// [`ModelKind::effects`]). An effect left out contributes no term and no work.
     pub effects: Option<Spanned<Vec<Spanned<String>>>>,
-    /// The book around a DOG page (`model = "dog"` only).
-    pub book: Option<Spanned<BookSection>>,
+    /// The book around a DOG page (`model = "dog"` only): the keys of [`BookParams`]
+    /// (omitted keys keep its defaults; without `left_pages`, half the pages start on the
+    /// left), except `cover`, which is the `cover` effect.
+    pub book: Option<Spanned<BookParams>>,
     /// The sheet of a tearing scene (`model = "sheet"` only): the keys of
     /// [`SheetSettings`] (omitted keys keep its defaults), except `tearing` (the scene's
     /// `[tearing]`), `time_step` (`solver.time_step`) and `effects` (the scene's list).
@@ -42,8 +45,9 @@ pub struct Scene {
     /// The tearing step's parameters (`model = "sheet"` only): the keys of
     /// [`TearSettings`], with `[tearing.fibers]` and `[tearing.detail]`.
     pub tearing: Option<Spanned<TearSettings>>,
-    /// Potential weights of the DOG book (`model = "dog"` only).
-    pub weights: Option<Spanned<WeightsSection>>,
+    /// Potential weights of the DOG book (`model = "dog"` only): the keys of [`Weights`],
+    /// each in $[0, 10^9]$.
+    pub weights: Option<Spanned<Weights<f64>>>,
     /// Time step and solver settings.
     pub solver: Option<Spanned<SolverSection>>,
     /// The input: a recorded fixture or timed events.
@@ -121,6 +125,10 @@ pub enum ModelKind {
     Sheet,
 }
 
+/// The largest weight a scene may give (`[weights]`): larger ones only stiffen the page
+/// into a badly conditioned step.
+pub const MAX_WEIGHT: f64 = 1e9;
+
 /// Every effect a scene may name.
 pub const EFFECTS: [&str; 9] = [
     "gravity",
@@ -163,36 +171,6 @@ impl ModelKind {
             Self::Sheet => &["gravity", "bending", "cones", "tearing"],
         }
     }
-}
-
-/// The book of a DOG scene (seed 000 Sec. 3.1); omitted keys take the seed's defaults.
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct BookSection {
-    /// Pages in the book.
-    pub pages: Option<Spanned<u32>>,
-    /// Pages in the left block at the start.
-    pub left_pages: Option<Spanned<u32>>,
-    /// Page width (page units; the seed's is 12).
-    pub page_width: Option<Spanned<f64>>,
-    /// Paper thickness (page units).
-    pub thickness: Option<Spanned<f64>>,
-}
-
-/// The DOG book's potential weights (seed `000_…` eq. 9-14); omitted keys keep the seed's.
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct WeightsSection {
-    /// DOG-Laplacian bending of the page (120).
-    pub bend_page: Option<Spanned<f64>>,
-    /// Curve bending of the blocks (200).
-    pub bend_blocks: Option<Spanned<f64>>,
-    /// Binding glue (600).
-    pub glue: Option<Spanned<f64>>,
-    /// Soft isometry of the page (4000 at the seed's grid).
-    pub iso_page: Option<Spanned<f64>>,
-    /// The grab pull (400).
-    pub pull: Option<Spanned<f64>>,
 }
 
 /// Time step and solver settings; omitted keys keep the model's defaults.
@@ -448,26 +426,8 @@ impl Scene {
             if model != ModelKind::Dog {
                 return bad(book.span(), "[book] is for model = \"dog\" only");
             }
-            let b = book.get_ref();
-            if let Some(p) = &b.pages {
-                if !(1..=100_000).contains(p.get_ref()) {
-                    return bad(p.span(), "pages must be between 1 and 100000");
-                }
-            }
-            if let (Some(l), pages) = (
-                &b.left_pages,
-                b.pages.as_ref().map_or(100, |p| *p.get_ref()),
-            ) {
-                if *l.get_ref() > pages {
-                    return bad(l.span(), "left_pages must be at most pages");
-                }
-            }
-            for v in [&b.page_width, &b.thickness].into_iter().flatten() {
-                let x = *v.get_ref();
-                if !(x.is_finite() && x > 0.0) {
-                    return bad(v.span(), "must be finite and > 0");
-                }
-            }
+            crate::book::check(self)
+                .map_err(|(span, message)| SceneError::at(text, Some(span), message))?;
         }
         Ok(())
     }
@@ -508,8 +468,7 @@ impl Scene {
         let w = self
             .book
             .as_ref()
-            .and_then(|b| b.get_ref().page_width.as_ref())
-            .map_or(12.0, |w| *w.get_ref());
+            .map_or(BookParams::default().page_width, |b| b.get_ref().page_width);
         [w, w * core::f64::consts::SQRT_2]
     }
 
@@ -574,11 +533,10 @@ impl Scene {
             if model != ModelKind::Dog {
                 return bad(w.span(), "[weights] is for model = \"dog\" only");
             }
-            let w = w.get_ref();
-            let all = [&w.bend_page, &w.bend_blocks, &w.glue, &w.iso_page, &w.pull];
-            for v in all.into_iter().flatten() {
-                if !(v.get_ref().is_finite() && *v.get_ref() >= 0.0 && *v.get_ref() <= 1e9) {
-                    return bad(v.span(), "a weight must be in [0, 1e9]");
+            for (key, v) in w.get_ref().named() {
+                if !(v.is_finite() && (0.0..=MAX_WEIGHT).contains(&v)) {
+                    let span = self.keys.span(key).unwrap_or_else(|| w.span());
+                    return bad(span, "a weight must be in [0, 1e9]");
                 }
             }
         }

@@ -2,7 +2,6 @@
 //! the mass-spring page's (effects, solver) and the tearing sheet's (sheet, tearing,
 //! effects, solver). Shared by the `folio` command and the C API's scene constructor.
 
-use folio_book::BookParams;
 use folio_book::{BookSettings, Effects};
 use folio_kernels::Real;
 use folio_pages::spring::SpringSettings;
@@ -16,17 +15,10 @@ use crate::scene::Scene;
 pub fn book_settings<T: Real>(scene: &Scene) -> BookSettings<T> {
     let mut s = BookSettings::default();
     if let Some(book) = &scene.book {
-        let b = book.get_ref();
-        let p: &mut BookParams = &mut s.params;
-        if let Some(v) = &b.pages {
-            p.total_pages = *v.get_ref();
-            p.left_pages = p.total_pages / 2;
+        s.params = *book.get_ref();
+        if scene.keys.span("book.left_pages").is_none() {
+            s.params.left_pages = s.params.total_pages / 2;
         }
-        if let Some(v) = &b.left_pages {
-            p.left_pages = *v.get_ref();
-        }
-        set(&mut p.page_width, b.page_width.as_ref());
-        set(&mut p.page_thickness, b.thickness.as_ref());
     }
     s.params.cover = scene.has_effect("cover");
     s.effects = Effects::NONE;
@@ -35,12 +27,7 @@ pub fn book_settings<T: Real>(scene: &Scene) -> BookSettings<T> {
         s.effects.enable(&name);
     }
     if let Some(w) = &scene.weights {
-        let w = w.get_ref();
-        set_real(&mut s.weights.bend_page, w.bend_page.as_ref());
-        set_real(&mut s.weights.bend_blocks, w.bend_blocks.as_ref());
-        set_real(&mut s.weights.glue, w.glue.as_ref());
-        set_real(&mut s.weights.iso_page, w.iso_page.as_ref());
-        set_real(&mut s.weights.pull, w.pull.as_ref());
+        s.weights = w.get_ref().map(T::from_f64);
     }
     if let Some(solver) = &scene.solver {
         let v = solver.get_ref();
