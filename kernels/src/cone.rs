@@ -1,4 +1,5 @@
-//! The conical page curl of seed `001_…` (Hong, Card and Chen 2004): a flat page wrapped
+//! The conical page curl of seed `001_…` (Hong, Card and Chen 2004; the seed's section "The
+//! math behind page curling" and its code, which number no equations): a flat page wrapped
 //! around a cone with half-angle $\theta$ and apex $(0, A, 0)$ on the spine, then turned
 //! by $\rho$ about the spine (the Y axis).
 //!

@@ -6,7 +6,8 @@
 //! $$g = c - n\cdot(x - a),\quad V = \tfrac12 k g^2,\quad \nabla V = -k g\,n,\quad
 //!   \nabla^2 V = k\, n n^\top.$$
 //! Two-sided for the one step it is on: a node that moves away leaves the contact set at
-//! the next detection. Units: $k$ in force per length, $V$ in energy.
+//! the next detection. It is one more term of the potential $V$ of seed `000_…` eq. 9.
+//! Units: $k$ in force per length, $V$ in energy.
 
 use crate::error::KernelError;
 use crate::real::{Mat3Ops, Real, Vec3Ops};

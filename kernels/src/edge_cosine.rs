@@ -1,6 +1,6 @@
 //! The cosine of the angle between two edge vectors, with exact first and second
-//! derivatives. Shared by the DOG angle constraints ([`crate::dog`], seed `000_…` Sec. 3.2)
-//! and the binding glue ([`crate::glue`], seed `000_…` eq. 11).
+//! derivatives. Shared by the DOG angle constraints ([`crate::dog`], seed `000_…` eq. 5,
+//! Sec. 3.2) and the binding glue ([`crate::glue`], seed `000_…` eq. 11).
 //!
 //! For $u, v \in \mathbb{R}^3$, $a = \lVert u\rVert$, $b = \lVert v\rVert$,
 //! $\hat u = u/a$, $\hat v = v/b$:

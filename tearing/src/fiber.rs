@@ -5,7 +5,7 @@
 //! The seed uses "a Perlin noise"; this one is Folio's own seeded gradient noise:
 //!
 //! - **Lattice gradients** from a hash: corner $(i, j)$ of octave $k$ takes one of 16 unit
-//!   vectors at angles $m\pi/8$, $m$ the top four bits of a splitmix64-style mix of
+//!   vectors at angles $m\pi/8$, $m$ the top four bits of the SplitMix64 mix ([`mix64`]) of
 //!   $(\text{seed}_k, i, j)$. No permutation table.
 //! - **Gradient noise** $n(x, y) = \mathrm{lerp}_{f(y_f)}\big(\mathrm{lerp}_{f(x_f)}(g_{00}
 //!   \cdot r_{00}, g_{10} \cdot r_{10}), \mathrm{lerp}_{f(x_f)}(g_{01} \cdot r_{01}, g_{11}
@@ -26,6 +26,7 @@
 //! settings give the same bits on every target.
 
 use folio_kernels::math;
+use folio_kernels::splitmix::{GAMMA, mix64, unit_interval};
 
 use crate::error::{TearingError, check_range};
 
@@ -220,28 +221,11 @@ fn clamp(x: f64, lo: f64, hi: f64) -> f64 {
     }
 }
 
-/// splitmix64's output mix: a bijection of `u64` with good avalanche.
-#[inline]
-#[must_use]
-pub(crate) fn mix64(z: u64) -> u64 {
-    let z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    let z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
-}
-
-/// The top 53 bits of `h` as a number in $[0, 1)$.
-#[inline]
-#[must_use]
-fn unit_interval(h: u64) -> f64 {
-    (h >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-}
-
 /// Hash of lattice corner $(i, j)$ under `seed`.
 #[inline]
 #[must_use]
 fn corner_hash(seed: u64, i: i64, j: i64) -> u64 {
-    const GOLDEN: u64 = 0x9E37_79B9_7F4A_7C15;
-    mix64(seed ^ mix64((i as u64).wrapping_mul(GOLDEN) ^ mix64((j as u64).wrapping_add(GOLDEN))))
+    mix64(seed ^ mix64((i as u64).wrapping_mul(GAMMA) ^ mix64((j as u64).wrapping_add(GAMMA))))
 }
 
 /// $\cos(\pi/8)$ and $\sin(\pi/8)$.

@@ -30,7 +30,9 @@
 
 use core::f32::consts::PI;
 
-use super::vector::{V3, add, dot, normalize_or};
+use glam::Vec3;
+
+use super::vector::normalize_or;
 
 /// Optical parameters of the paper (seed `000_…` eq. 15-17).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -104,13 +106,13 @@ pub fn coefficients(paper: &Paper, thickness: f32, fresnel: f32, fresnel_back: f
 /// $f_{\text{CT}}$ without its Fresnel factor (module docs), for unit $n, v, l$ with
 /// $n \cdot l > 0$; 0 when $n \cdot v \le 0$.
 #[must_use]
-pub fn cook_torrance(n: V3, v: V3, l: V3, roughness: f32) -> f32 {
-    let (nl, nv) = (dot(n, l), dot(n, v));
+pub fn cook_torrance(n: Vec3, v: Vec3, l: Vec3, roughness: f32) -> f32 {
+    let (nl, nv) = (n.dot(l), n.dot(v));
     if !(nl > 0.0 && nv > 0.0) {
         return 0.0;
     }
-    let h = normalize_or(add(l, v), n);
-    let nh = dot(n, h).clamp(0.0, 1.0);
+    let h = normalize_or(l + v, n);
+    let nh = n.dot(h).clamp(0.0, 1.0);
     let a = (roughness * roughness).max(1e-3);
     let a2 = a * a;
     let q = nh * nh * (a2 - 1.0) + 1.0;
@@ -123,11 +125,11 @@ pub fn cook_torrance(n: V3, v: V3, l: V3, roughness: f32) -> f32 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PagePoint {
     /// Unit normal of the side seen.
-    pub normal: V3,
+    pub normal: Vec3,
     /// Unit direction to the eye.
-    pub view: V3,
+    pub view: Vec3,
     /// Unit direction to the light.
-    pub light: V3,
+    pub light: Vec3,
     /// Irradiance $E$ at normal incidence (shadowing included).
     pub irradiance: f32,
     /// Ambient radiance $A$.
@@ -143,12 +145,12 @@ pub struct PagePoint {
 /// Outgoing radiance of a page point (module docs: eq. 15-17 plus ambient).
 #[must_use]
 pub fn page_radiance(paper: &Paper, p: &PagePoint) -> [f32; 3] {
-    let nl = dot(p.normal, p.light);
+    let nl = p.normal.dot(p.light);
     let [kd_a, _, kt_a] = coefficients(paper, p.thickness, paper.f0, paper.f0);
     let mut out = [0, 1, 2].map(|c| p.ambient * p.albedo[c] * (kd_a + kt_a * p.albedo_back[c]));
     if nl > 0.0 {
-        let h = normalize_or(add(p.light, p.view), p.normal);
-        let fresnel = schlick(paper.f0, dot(h, p.view));
+        let h = normalize_or(p.light + p.view, p.normal);
+        let fresnel = schlick(paper.f0, h.dot(p.view));
         let [kd, ks, _] = coefficients(paper, p.thickness, fresnel, paper.f0);
         let specular = ks * cook_torrance(p.normal, p.view, p.light, paper.roughness);
         for (o, a) in out.iter_mut().zip(p.albedo) {
@@ -168,12 +170,12 @@ pub fn page_radiance(paper: &Paper, p: &PagePoint) -> [f32; 3] {
 #[must_use]
 pub fn lambert_radiance(
     albedo: [f32; 3],
-    normal: V3,
-    light: V3,
+    normal: Vec3,
+    light: Vec3,
     irradiance: f32,
     ambient: f32,
 ) -> [f32; 3] {
-    let nl = dot(normal, light).max(0.0);
+    let nl = normal.dot(light).max(0.0);
     albedo.map(|a| a * (irradiance * nl / PI + ambient))
 }
 
@@ -236,21 +238,21 @@ mod tests {
     /// for the specular part: $\int f_{\text{CT}} F \cos\theta_l \, d\omega \le 1$).
     #[test]
     fn cook_torrance_is_bounded() {
-        let n = [0.0, 1.0, 0.0];
+        let n = Vec3::Y;
         for &r in &[0.2, 0.65, 1.0] {
             for &view_angle in &[0.0f32, 0.6, 1.2] {
-                let v = [view_angle.sin(), view_angle.cos(), 0.0];
+                let v = Vec3::new(view_angle.sin(), view_angle.cos(), 0.0);
                 let mut sum = 0.0;
                 let steps = 200;
                 for i in 0..steps {
                     for j in 0..steps {
                         let theta = (i as f32 + 0.5) / steps as f32 * PI / 2.0;
                         let phi = (j as f32 + 0.5) / steps as f32 * 2.0 * PI;
-                        let l = [
+                        let l = Vec3::new(
                             theta.sin() * phi.cos(),
                             theta.cos(),
                             theta.sin() * phi.sin(),
-                        ];
+                        );
                         let d_omega =
                             theta.sin() * (PI / 2.0 / steps as f32) * (2.0 * PI / steps as f32);
                         sum += cook_torrance(n, v, l, r) * theta.cos() * d_omega;
@@ -271,10 +273,10 @@ mod tests {
         let paper = Paper::default();
         let white = [0.9; 3];
         let ink = [0.2; 3];
-        let point = |light: V3, back: [f32; 3]| PagePoint {
-            normal: [0.0, 1.0, 0.0],
-            view: normalize_or([0.3, 1.0, 0.2], [0.0, 1.0, 0.0]),
-            light: normalize_or(light, [0.0, 1.0, 0.0]),
+        let point = |light: [f32; 3], back: [f32; 3]| PagePoint {
+            normal: Vec3::Y,
+            view: normalize_or(Vec3::new(0.3, 1.0, 0.2), Vec3::Y),
+            light: normalize_or(light.into(), Vec3::Y),
             irradiance: 3.0,
             ambient: 0.0,
             albedo: white,
