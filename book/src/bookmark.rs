@@ -87,7 +87,7 @@ impl<T: Real> History<T> {
 
     /// The page at position `u` in $[0, 1]$ along the history followed by `current` (the
     /// page now): with the $n$ snapshots and `current` as $g_0 \dots g_n$, position
-    /// $s = u\,n$ gives $(1 - f) g_{\lfloor s\rfloor} + f\, g_{\lfloor s\rfloor + 1}$,
+    /// $s = u\thinspace n$ gives $(1 - f) g_{\lfloor s\rfloor} + f\thinspace g_{\lfloor s\rfloor + 1}$,
     /// $f = s - \lfloor s\rfloor$. Writes nothing if the sizes disagree or nothing was recorded.
     pub fn interpolate(&self, out: &mut [T::Vec3], current: &[T::Vec3], u: T) {
         let (len, nodes) = (self.ring.len(), self.ring.width());

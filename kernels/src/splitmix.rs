@@ -46,7 +46,7 @@ impl SplitMix64 {
         mix64(self.0)
     }
 
-    /// Uniform in `[lo, hi)`: $lo + (hi - lo)\,u$, $u$ the next [`unit_interval`].
+    /// Uniform in `[lo, hi)`: $lo + (hi - lo)\thinspace u$, $u$ the next [`unit_interval`].
     #[inline]
     pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
         let u = unit_interval(self.next_u64());

@@ -329,7 +329,7 @@ pub fn area2_and_longest(u: [[f64; 2]; 3]) -> (f64, f64) {
 }
 
 /// A random counter-clockwise pattern triangle in $[-2, 2]^2$ with
-/// $2A \ge$ `shape` $\cdot\,\ell_{\max}^2$ and $\ell_{\max}^2 \ge$ `min_longest_sq`.
+/// $2A \ge$ `shape` $\cdot\thinspace\ell_{\max}^2$ and $\ell_{\max}^2 \ge$ `min_longest_sq`.
 pub fn pattern_triangle(r: &mut Rng, shape: f64, min_longest_sq: f64) -> [[f64; 2]; 3] {
     loop {
         let u = [(); 3].map(|()| [r.uniform(-2.0, 2.0), r.uniform(-2.0, 2.0)]);

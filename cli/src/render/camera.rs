@@ -12,7 +12,7 @@ use super::vector::normalize_or;
 /// $z_v = (p - e)\cdot f$ (the depth) with eye $e$ and the orthonormal right, up and forward
 /// vectors $r, u, f$ (right-handed: $r = f \times \hat y / \lVert\cdot\rVert$,
 /// $u = r \times f$). Screen coordinates (pixels, $y$ down):
-/// $s_x = c_x + \phi\, x_v / z_v$, $s_y = c_y - \phi\, y_v / z_v$ with focal length $\phi$
+/// $s_x = c_x + \phi\thinspace x_v / z_v$, $s_y = c_y - \phi\thinspace y_v / z_v$ with focal length $\phi$
 /// (pixels) and principal point $(c_x, c_y)$.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {

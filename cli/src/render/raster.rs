@@ -73,7 +73,7 @@ fn edge(a: [f32; 2], b: [f32; 2], p: [f32; 2]) -> f32 {
 /// ([`Camera::project`]), and a pixel centre $p$ is covered when its barycentric
 /// coordinates $\lambda_i = E_i(p) / E$ (edge functions over twice the signed area) are all
 /// $\ge 0$. Attributes $a$ are interpolated perspective-correctly,
-/// $a(p) = \sum_i \lambda_i a_i / z_i \,/\, \sum_i \lambda_i / z_i$.
+/// $a(p) = \sum_i \lambda_i a_i / z_i \thinspace/\thinspace \sum_i \lambda_i / z_i$.
 ///
 /// With `cull`, triangles that are clockwise seen from the eye (back faces of a mesh whose
 /// triangles are counter-clockwise seen from the side their normals point to) are skipped.

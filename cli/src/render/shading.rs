@@ -4,7 +4,7 @@
 //! The page (seed eq. 15) reflects, specularly reflects and transmits:
 //! $$f = k_d f_{\text{Lambert}} + k_s f_{\text{CT}} + k_t f_{\text{Lambert,back}},$$
 //! with (eq. 16, 17, and $k_s = F_{\text{Schlick}}$ from the text after eq. 17)
-//! $$k_t = (1 - F_{\text{Schlick,back}})\, e^{-\alpha t}, \qquad
+//! $$k_t = (1 - F_{\text{Schlick,back}})\thinspace e^{-\alpha t}, \qquad
 //!   k_d = (1 - F_{\text{Schlick}})(1 - e^{-\alpha t}), \qquad k_s = F_{\text{Schlick}},$$
 //! where $t$ is the page's thickness and $\alpha$ the paper's absorption ([`Paper`]).
 //! Folio's choices where the seed names none:
@@ -12,20 +12,20 @@
 //! - $F_{\text{Schlick}}(\cos) = F_0 + (1 - F_0)(1 - \cos)^5$ (Schlick 1994), evaluated at
 //!   $\cos = h \cdot v$ for $k_s$ and $k_d$ (light arriving on the side seen) and at
 //!   $\cos = \lvert n \cdot l\rvert$ for $k_t$ (light arriving on the other side);
-//! - $f_{\text{CT}} = D\,G / (4 (n\cdot l)(n\cdot v))$ (the Fresnel factor is $k_s$) with
+//! - $f_{\text{CT}} = D\thinspace G / (4 (n\cdot l)(n\cdot v))$ (the Fresnel factor is $k_s$) with
 //!   the GGX / Trowbridge-Reitz distribution
 //!   $D = a^2 / (\pi ((n\cdot h)^2 (a^2 - 1) + 1)^2)$, $a = r^2$ for roughness $r$, and the
-//!   separable Smith masking $G = G_1(n\cdot l)\, G_1(n\cdot v)$,
+//!   separable Smith masking $G = G_1(n\cdot l)\thinspace G_1(n\cdot v)$,
 //!   $G_1(x) = 2x / (x + \sqrt{a^2 + (1 - a^2) x^2})$ (Walter et al. 2007);
 //! - $f_{\text{Lambert}} = \rho / \pi$ with the albedo $\rho$ of the side seen, and
-//!   $f_{\text{Lambert,back}} = \rho\, \rho_{\text{back}} / \pi$: transmitted light crosses
+//!   $f_{\text{Lambert,back}} = \rho\thinspace \rho_{\text{back}} / \pi$: transmitted light crosses
 //!   the print of both sides, so the back's print shows through, mirrored.
 //!
 //! With a point light of irradiance $E$ (normal incidence, shadowing included) from the unit
-//! direction $l$, the outgoing radiance towards $v$ is $E\,\lvert n\cdot l\rvert\, f$: only
+//! direction $l$, the outgoing radiance towards $v$ is $E\thinspace\lvert n\cdot l\rvert\thinspace f$: only
 //! the first two terms for $n \cdot l > 0$, only the third for $n \cdot l < 0$. A constant
 //! ambient radiance $A$ arrives from both sides, shaded with $F = F_0$:
-//! $A\,((1 - F_0)(1 - e^{-\alpha t})\,\rho + (1 - F_0)\,e^{-\alpha t} \rho\,\rho_{\text{back}})$.
+//! $A\thinspace((1 - F_0)(1 - e^{-\alpha t})\thinspace\rho + (1 - F_0)\thinspace e^{-\alpha t} \rho\thinspace\rho_{\text{back}})$.
 //! Energy: $k_d + k_s \le 1$ and $k_d + k_t \le 1$ for $F, F_{\text{back}} \in [0, 1]$.
 
 use core::f32::consts::PI;
@@ -41,7 +41,7 @@ pub struct Paper {
     /// stack of $k$ pages is $k t$ thick ([`super::ContactSheet::add_frame`]).
     pub thickness: f32,
     /// Absorption $\alpha$ (1 / page unit), $\ge 0$: one page transmits $e^{-\alpha t}$.
-    /// Default 200: $e^{-1.5} \approx 22\,\%$ for one page (thin printing paper lets through
+    /// Default 200: $e^{-1.5} \approx 0.22$ for one page (thin printing paper lets through
     /// roughly a fifth of the light), $e^{-15} \approx 0$ for ten.
     pub absorption: f32,
     /// Roughness $r \in (0, 1]$ (GGX $a = r^2$). Default 0.65: matte uncoated paper.
@@ -166,7 +166,7 @@ pub fn page_radiance(paper: &Paper, p: &PagePoint) -> [f32; 3] {
     out
 }
 
-/// Outgoing radiance of an opaque Lambertian point: $E \max(n\cdot l, 0)\,\rho/\pi + A\rho$.
+/// Outgoing radiance of an opaque Lambertian point: $E \max(n\cdot l, 0)\thinspace\rho/\pi + A\rho$.
 #[must_use]
 pub fn lambert_radiance(
     albedo: [f32; 3],
@@ -235,7 +235,7 @@ mod tests {
     }
 
     /// The GGX lobe with Smith masking reflects at most what arrives (white furnace bound
-    /// for the specular part: $\int f_{\text{CT}} F \cos\theta_l \, d\omega \le 1$).
+    /// for the specular part: $\int f_{\text{CT}} F \cos\theta_l \thinspace d\omega \le 1$).
     #[test]
     fn cook_torrance_is_bounded() {
         let n = Vec3::Y;

@@ -5,12 +5,12 @@
 //!
 //! **Timing.** Key frame $k$ holds the particles at frame $k s$ of the run, $s$ the interval
 //! in whole frames ([`super::SpringSettings::key_frame_stride`]), i.e. at time
-//! $t_k = k\,s\,h$.
+//! $t_k = k\thinspace s\thinspace h$.
 //!
 //! **Interpolation.** Linear between the bracketing key frames, the seed's "simple
 //! interpolation": with $\Delta = s h$, $k = \lfloor t/\Delta\rfloor$ and
 //! $\alpha = t/\Delta - k$,
-//! $$x(t) \approx (1 - \alpha)\,X_k + \alpha\,X_{k+1},$$
+//! $$x(t) \approx (1 - \alpha)\thinspace X_k + \alpha\thinspace X_{k+1},$$
 //! exact at the key frames and in error by at most $\frac{\Delta^2}{8}\max\lVert\ddot x\rVert$
 //! between them (the linear interpolation remainder). Catmull-Rom would have an
 //! $O(\Delta^4)$ error on smooth motion but overshoots at the grab and the release, where the
