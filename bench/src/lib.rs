@@ -8,25 +8,21 @@ pub mod tearing;
 
 use folio_kernels::Real;
 use folio_kernels::real::Vec3Ops;
+use folio_kernels::splitmix::SplitMix64;
 
-/// A deterministic generator (SplitMix64) so every bench run sees the same inputs.
-pub struct Inputs(u64);
+/// A deterministic generator ([`SplitMix64`]) so every bench run sees the same inputs.
+pub struct Inputs(SplitMix64);
 
 impl Inputs {
     /// A generator with the given seed.
     #[must_use]
     pub fn new(seed: u64) -> Self {
-        Self(seed)
+        Self(SplitMix64::new(seed))
     }
 
     /// Uniform in `[lo, hi)`.
     pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        lo + (hi - lo) * ((z >> 11) as f64 / (1u64 << 53) as f64)
+        self.0.uniform(lo, hi)
     }
 
     /// `count` gently curved stars of `N` nodes (`N` = 5 inner, 4 boundary, 3 curve, 2 edge):

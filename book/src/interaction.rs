@@ -53,7 +53,7 @@ impl<T: Real> Ray<T> {
 /// The tent over the book (seed Fig. 7; its shape is left to the implementer). A drag point
 /// $\tilde p$ is first moved over the book, $x \in [x_b - r, x_b + r]$ and $z \in [0, H]$,
 /// then given the height of the tent
-/// $$y(x) = y_{base} + \eta\, r \left(1 - \frac{\lvert x - x_b\rvert}{r}\right),$$
+/// $$y(x) = y_{base} + \eta\thinspace r \left(1 - \frac{\lvert x - x_b\rvert}{r}\right),$$
 /// with $x_b$ the binding's centre, $r$ the grabbed node's distance from the binding along
 /// the flat page, $y_{base}$ the top of the thicker block and $\eta$ the tent height ratio
 /// (0.6 by default). At $x = x_b \pm r$ the target is where the node lies on a flat block;

@@ -25,6 +25,7 @@ use std::io;
 use std::path::Path;
 
 use folio_geometry::mesh::TriMesh;
+use glam::Vec3;
 
 pub use error::RenderError;
 pub use shading::Paper;
@@ -122,7 +123,8 @@ fn stage(settings: &SheetSettings, bounds: [[f32; 3]; 2]) -> Result<Stage, Rende
         }
     }
     for (field, d) in [("eye", settings.eye), ("light", settings.light)] {
-        if !(vector::finite(d) && vector::length(d) > 0.0) {
+        let d = Vec3::from(d);
+        if !(d.is_finite() && d.length() > 0.0) {
             return Err(RenderError::Direction { field });
         }
     }
@@ -131,7 +133,7 @@ fn stage(settings: &SheetSettings, bounds: [[f32; 3]; 2]) -> Result<Stage, Rende
         [w as usize, h as usize],
         settings.supersample as usize,
         settings.paper,
-        [settings.eye, settings.light],
+        [settings.eye, settings.light].map(Vec3::from),
     ))
 }
 

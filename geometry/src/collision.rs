@@ -3,7 +3,7 @@
 //! segment $(a, b)$, on the segment's span, is translated along the segment normal $n$ (the
 //! side the point belongs on) until its signed distance is $c$:
 //! $$s = \frac{(p-a)\cdot(b-a)}{\lVert b-a\rVert^2} \in [0, 1],\quad d = (p - a)\cdot n,\quad
-//!   d < c \Rightarrow p \mathrel{+}= (c - d)\,n.$$
+//!   d < c \Rightarrow p \mathrel{+}= (c - d)\thinspace n.$$
 //! The allowed side of every contact is known structurally (the active page lies above the
 //! blocks, the blocks above the cover, the cover above the table), which is what the seed
 //! reads from the initial configuration; it stays defined when a point is exactly on a

@@ -1,8 +1,8 @@
 //! Binding constraints, $C_{\mathrm{binding}}$ of seed `000_…` eq. 7: the XY projection of a
 //! bound active-page node $x_i$ sits at parameter $q \in [0, 1]$ on the binding edge
 //! $(x_{b_1}, x_{b_2})$. Nodes `[x_i, x_b1, x_b2]`, two rows (X, Y):
-//! $$\varphi_X = x_i^X - \left((1-q)\,x_{b_1}^X + q\,x_{b_2}^X\right),\quad
-//!   \varphi_Y = x_i^Y - \left((1-q)\,x_{b_1}^Y + q\,x_{b_2}^Y\right).$$
+//! $$\varphi_X = x_i^X - \left((1-q)\thinspace x_{b_1}^X + q\thinspace x_{b_2}^X\right),\quad
+//!   \varphi_Y = x_i^Y - \left((1-q)\thinspace x_{b_1}^Y + q\thinspace x_{b_2}^Y\right).$$
 //! Affine: constant Jacobian, zero constraint Hessian. Units: length. $q$ is the number of
 //! pages in the left block plus half the active pages, over the total (set per frame).
 

@@ -1,12 +1,13 @@
-//! The conical page curl of seed `001_…` (Hong, Card and Chen 2004): a flat page wrapped
+//! The conical page curl of seed `001_…` (Hong, Card and Chen 2004; the seed's section "The
+//! math behind page curling" and its code, which number no equations): a flat page wrapped
 //! around a cone with half-angle $\theta$ and apex $(0, A, 0)$ on the spine, then turned
 //! by $\rho$ about the spine (the Y axis).
 //!
 //! Page coordinates $(x, y)$: $x \ge 0$ across the page from the spine, $y$ along it.
 //! With the polar coordinates of the page point around the apex,
-//! $R = \sqrt{x^2 + (y-A)^2}$, $\alpha = \operatorname{atan2}(x,\, y - A)$, and
+//! $R = \sqrt{x^2 + (y-A)^2}$, $\alpha = \operatorname{atan2}(x,\thinspace y - A)$, and
 //! $s = \sin\theta$, $c = \cos\theta$, $\beta = \alpha / s$:
-//! $$v = \bigl(R s \sin\beta,\ A + R - R s^2 (1-\cos\beta),\ R s c\,(1-\cos\beta)\bigr),$$
+//! $$v = \bigl(R s \sin\beta,\ A + R - R s^2 (1-\cos\beta),\ R s c\thinspace(1-\cos\beta)\bigr),$$
 //! $$T(x,y) = (v_x\cos\rho - v_z\sin\rho,\ v_y,\ v_x\sin\rho + v_z\cos\rho).$$
 //! The seed writes $\alpha = \arcsin(x/R)$; the two agree wherever $y \ge A$ (the page
 //! above the apex, the seed's use), and the polar angle keeps the map an isometry, finite and
@@ -161,11 +162,11 @@ impl<T: Real> ConeCurl<T> {
 
     /// The columns $[\partial T/\partial\theta,\ \partial T/\partial A,\ \partial T/\partial\rho]$
     /// at page point $(x, y)$ (module docs). With $\beta = \alpha/s$:
-    /// $\partial_\theta v = \bigl(Rc(\sin\beta - \beta\cos\beta),\ -Rsc\,(2(1-\cos\beta) - \beta\sin\beta),\
+    /// $\partial_\theta v = \bigl(Rc(\sin\beta - \beta\cos\beta),\ -Rsc\thinspace(2(1-\cos\beta) - \beta\sin\beta),~
     ///  R((c^2-s^2)(1-\cos\beta) - c^2\beta\sin\beta)\bigr)$,
-    /// $\partial_A v = \bigl(\cos\beta\sin\alpha - s\sin\beta\cos\alpha,\
-    ///  1 - \cos\alpha\,(1 - s^2(1-\cos\beta)) - s\sin\beta\sin\alpha,\
-    ///  c\,(\sin\beta\sin\alpha - s(1-\cos\beta)\cos\alpha)\bigr)$,
+    /// $\partial_A v = \bigl(\cos\beta\sin\alpha - s\sin\beta\cos\alpha,~
+    ///  1 - \cos\alpha\thinspace(1 - s^2(1-\cos\beta)) - s\sin\beta\sin\alpha,~
+    ///  c\thinspace(\sin\beta\sin\alpha - s(1-\cos\beta)\cos\alpha)\bigr)$,
     /// both turned by $\rho$, and $\partial_\rho T = (-T_z, 0, T_x)$.
     #[must_use]
     pub fn jacobian(&self, x: T, y: T) -> [T::Vec3; 3] {

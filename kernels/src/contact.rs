@@ -3,10 +3,11 @@
 //! after the step; a contact found in one step is this spring in the next, so that the
 //! step itself carries the contact force and the projection afterwards has almost nothing
 //! left to move):
-//! $$g = c - n\cdot(x - a),\quad V = \tfrac12 k g^2,\quad \nabla V = -k g\,n,\quad
-//!   \nabla^2 V = k\, n n^\top.$$
+//! $$g = c - n\cdot(x - a),\quad V = \tfrac12 k g^2,\quad \nabla V = -k g\thinspace n,\quad
+//!   \nabla^2 V = k\thinspace n n^\top.$$
 //! Two-sided for the one step it is on: a node that moves away leaves the contact set at
-//! the next detection. Units: $k$ in force per length, $V$ in energy.
+//! the next detection. It is one more term of the potential $V$ of seed `000_…` eq. 9.
+//! Units: $k$ in force per length, $V$ in energy.
 
 use crate::error::KernelError;
 use crate::real::{Mat3Ops, Real, Vec3Ops};

@@ -6,8 +6,8 @@
 //!
 //! * [`DogInnerStar`], nodes `[p0, xf, yf, xb, yb]` (x-forward, y-forward, x-back, y-back,
 //!   counter-clockwise), three rows, all four angles equal:
-//!   $$\varphi_1 = c(e_{xf},e_{yf}) - c(e_{yf},e_{xb}),\;
-//!   \varphi_2 = c(e_{yf},e_{xb}) - c(e_{xb},e_{yb}),\;
+//!   $$\varphi_1 = c(e_{xf},e_{yf}) - c(e_{yf},e_{xb}),\thickspace
+//!   \varphi_2 = c(e_{yf},e_{xb}) - c(e_{xb},e_{yb}),\thickspace
 //!   \varphi_3 = c(e_{xb},e_{yb}) - c(e_{xf},e_{yb}).$$
 //! * [`DogBoundaryStar`], nodes `[p0, xf, yf, xb]` (three consecutive neighbours), one row
 //!   $\varphi = c(e_{xf},e_{yf}) - c(e_{yf},e_{xb})$.
@@ -169,7 +169,7 @@ impl<T: Real> Constraint<T, 1, 4> for DogBoundaryStar<T> {
 
 /// The flat-star remedy (module docs): evaluate the Jacobian of a star whose flatness
 /// $s = \max_k \lvert \hat e_k \cdot \hat n\rvert$ is below `flatness_tolerance` at
-/// $p_0 + \delta\,\hat n$, with $\delta = $ `relative_offset` $\cdot\,\bar L\,(1 - s/\tau)$,
+/// $p_0 + \delta\thinspace\hat n$, with $\delta = $ `relative_offset` $\cdot\thinspace\bar L\thinspace(1 - s/\tau)$,
 /// $\bar L$ the mean edge length and $\hat n$ the star normal
 /// ($(e_{xf}-e_{xb})\times(e_{yf}-e_{yb})$ inner, $(e_{xf}-e_{xb})\times e_{yf}$ boundary).
 /// The blend $(1 - s/\tau)$ keeps the Jacobian continuous; stars with $s \ge \tau$ get the

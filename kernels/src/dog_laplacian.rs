@@ -2,9 +2,9 @@
 //! rest lengths $L^0$, as a [`SquaredStencil`]:
 //!
 //! * inner vertex, nodes `[p0, xf, yf, xb, yb]`:
-//!   $V = \lVert \sum_{j \in \{xf,yf,xb,yb\}} (p_0 - p_j)/L^0_j \rVert^2$;
+//!   $V = \lVert \sum_{j \in \lbrace xf,yf,xb,yb\rbrace} (p_0 - p_j)/L^0_j \rVert^2$;
 //! * boundary vertex with three neighbours, along its full grid curve, nodes `[p0, xf, xb]`:
-//!   $V = \lVert 2\,((p_0 - p_{xf})/L^0_{xf} + (p_0 - p_{xb})/L^0_{xb}) \rVert^2$.
+//!   $V = \lVert 2\thinspace((p_0 - p_{xf})/L^0_{xf} + (p_0 - p_{xb})/L^0_{xb}) \rVert^2$.
 //!
 //! Unweighted: the model multiplies by $w_{\mathrm{bend3D}}$ (120 at the seed's 11x8 grid)
 //! and rescales with the cell size. Units: dimensionless (length / length).

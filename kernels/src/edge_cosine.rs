@@ -1,13 +1,13 @@
 //! The cosine of the angle between two edge vectors, with exact first and second
-//! derivatives. Shared by the DOG angle constraints ([`crate::dog`], seed `000_…` Sec. 3.2)
-//! and the binding glue ([`crate::glue`], seed `000_…` eq. 11).
+//! derivatives. Shared by the DOG angle constraints ([`crate::dog`], seed `000_…` eq. 5,
+//! Sec. 3.2) and the binding glue ([`crate::glue`], seed `000_…` eq. 11).
 //!
 //! For $u, v \in \mathbb{R}^3$, $a = \lVert u\rVert$, $b = \lVert v\rVert$,
 //! $\hat u = u/a$, $\hat v = v/b$:
 //! $$c(u, v) = \hat u \cdot \hat v,\quad
-//! \nabla_u c = \frac{\hat v - c\,\hat u}{a},\quad \nabla_v c = \frac{\hat u - c\,\hat v}{b},$$
-//! $$\nabla^2_{uu} c = -\frac{\hat u \hat v^T + \hat v \hat u^T + c\,(I - 3\hat u\hat u^T)}{a^2},\quad
-//! \nabla^2_{uv} c = \frac{I - \hat u \hat u^T - \hat v \hat v^T + c\,\hat u \hat v^T}{a b}.$$
+//! \nabla_u c = \frac{\hat v - c\thinspace\hat u}{a},\quad \nabla_v c = \frac{\hat u - c\thinspace\hat v}{b},$$
+//! $$\nabla^2_{uu} c = -\frac{\hat u \hat v^T + \hat v \hat u^T + c\thinspace(I - 3\hat u\hat u^T)}{a^2},\quad
+//! \nabla^2_{uv} c = \frac{I - \hat u \hat u^T - \hat v \hat v^T + c\thinspace\hat u \hat v^T}{a b}.$$
 //!
 //! Degenerate edges: if $a$ or $b$ is below [`Real::LENGTH_FLOOR`] or below
 //! $\varepsilon$ times the other length, the angle is undefined; the fallback is $c = 0$

@@ -92,7 +92,7 @@ pub(crate) fn squared_rest_length<T: Real>(l: T) -> Result<T, KernelError> {
 
 /// Twice the signed area $2A = (u_1 - u_0) \times (u_2 - u_0)$ of a rest triangle of a 2D
 /// pattern, if it is usable: finite, counter-clockwise and not a sliver, i.e.
-/// $2A > \sqrt{\varepsilon}\,\ell_{\max}^2$ with $\ell_{\max}$ the longest edge and
+/// $2A > \sqrt{\varepsilon}\thinspace\ell_{\max}^2$ with $\ell_{\max}$ the longest edge and
 /// $\ell_{\max} \ge$ [`Real::LENGTH_FLOOR`]. Else [`KernelError::NonPositiveRestArea`].
 pub(crate) fn rest_triangle_area2<T: Real>(u: [[T; 2]; 3], index: usize) -> Result<T, KernelError> {
     let edge = |a: [T; 2], b: [T; 2]| [b[0] - a[0], b[1] - a[1]];

@@ -2,8 +2,8 @@
 //! binding. Nodes `[x_l, x_b1, x_b2, x_r]`: the midline node left of the binding edge, the
 //! binding edge $(x_{b_1}, x_{b_2})$ (left to right), the node right of it. In the XY plane
 //! (Z is ignored: the midline is planar),
-//! $$n = \frac{R\,(x_{b_2} - x_{b_1})}{\lVert\cdot\rVert},\ R(x,y,z) = (-y, x, 0),\quad
-//!   d_{left} = \frac{P(x_l - x_{b_1})}{\lVert\cdot\rVert},\
+//! $$n = \frac{R\thinspace(x_{b_2} - x_{b_1})}{\lVert\cdot\rVert},\ R(x,y,z) = (-y, x, 0),\quad
+//!   d_{left} = \frac{P(x_l - x_{b_1})}{\lVert\cdot\rVert},~
 //!   d_{right} = \frac{P(x_r - x_{b_2})}{\lVert\cdot\rVert},\ P = \mathrm{diag}(1,1,0),$$
 //! $$V = (\langle n, d_{left}\rangle - 1)^2 + (\langle n, d_{right}\rangle - 1)^2.$$
 //! Each $\langle n, d\rangle$ is an [`EdgeCosine`] of the linearly mapped edges, so

@@ -1,5 +1,5 @@
 //! Gravity, $V_{\mathrm{gravity}}$ of seed `000_…` eq. 12, for one node:
-//! $$V = g\, m\, x^Y,\quad \nabla V = (0, g m, 0),\quad \nabla^2 V = 0,$$
+//! $$V = g\thinspace m\thinspace x^Y,\quad \nabla V = (0, g m, 0),\quad \nabla^2 V = 0,$$
 //! gravity along −Y. Units: $g$ in length/s², $m$ in page masses (a page weighs 1),
 //! $V$ in mass·length²/s².
 
@@ -10,7 +10,7 @@ use crate::term::{Blocks, NodeVecs, Potential, zero_blocks};
 /// Potential energy of one node in uniform gravity (module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Gravity<T> {
-    /// $g\,m$: gravitational acceleration times the node's mass.
+    /// $g\thinspace m$: gravitational acceleration times the node's mass.
     pub weight: T,
 }
 

@@ -10,8 +10,8 @@
 //! lie on opposite sides of the edge). With rest areas $A_a, A_b$ and the interior pattern
 //! angles $\alpha_0, \alpha_1$ of triangle $a$ and $\beta_0, \beta_1$ of triangle $b$ at
 //! $x_0$ and $x_1$:
-//! $$V = \frac{3}{A_a + A_b}\,\Bigl\lVert \sum_{i=0}^{3} K_i x_i \Bigr\rVert^2,\qquad
-//!   K = \bigl(\cot\alpha_1 + \cot\beta_1,\ \cot\alpha_0 + \cot\beta_0,\
+//! $$V = \frac{3}{A_a + A_b}\thinspace\Bigl\lVert \sum_{i=0}^{3} K_i x_i \Bigr\rVert^2,\qquad
+//!   K = \bigl(\cot\alpha_1 + \cot\beta_1,\ \cot\alpha_0 + \cot\beta_0,~
 //!   -\cot\alpha_0 - \cot\alpha_1,\ -\cot\beta_0 - \cot\beta_1\bigr).$$
 //! In the paper's notation ($e_0$ the edge, $e_1, e_2$ from $x_0$ and $e_3, e_4$ from $x_1$
 //! to $x_2, x_3$, $c_{0j}$ the cotangent of the interior angle between $e_0$ and $e_j$) this is
@@ -23,12 +23,12 @@
 //! with $x_0 = 0$, $x_1 = (\ell, 0)$, $x_2 = (p, h)$, $h > 0$: then $\cot\alpha_0 = p/h$,
 //! $\cot\alpha_1 = (\ell - p)/h$ and
 //! $s_a = \tfrac{\ell - p}{h}(-p, -h) + \tfrac{p}{h}(\ell - p, -h) = (0, -\ell)$, i.e.
-//! $s_a = -\ell\, m_a$ with $\ell = \lVert e\rVert$ and $m_a$ the unit vector in the plane of
-//! $a$, normal to $e$, pointing into $a$; likewise $s_b = -\ell\, m_b$. This holds for any
+//! $s_a = -\ell\thinspace m_a$ with $\ell = \lVert e\rVert$ and $m_a$ the unit vector in the plane of
+//! $a$, normal to $e$, pointing into $a$; likewise $s_b = -\ell\thinspace m_b$. This holds for any
 //! rigid placement of each triangle, so for an isometric deformation that folds the two
 //! triangles about the edge by the dihedral angle $\theta$ ($\theta = 0$ flat, $m_b = -m_a$):
 //! $\lVert s\rVert = \ell \lVert m_a + m_b\rVert = 2\ell\sin(\theta/2)$ and
-//! $$V = \frac{12\,\ell^2 \sin^2(\theta/2)}{A_a + A_b} \approx \frac{3\,\ell^2}{A_a + A_b}\,\theta^2,$$
+//! $$V = \frac{12\thinspace\ell^2 \sin^2(\theta/2)}{A_a + A_b} \approx \frac{3\thinspace\ell^2}{A_a + A_b}\thinspace\theta^2,$$
 //! the discrete-shell hinge energy $\ell^2\theta^2/\bar A$ with $\bar A = (A_a+A_b)/3$.
 //! Moreover $\sum_i K_i = 0$ and $\sum_i K_i u_i = 0$ for the pattern points $u_i$ (the two
 //! triangle parts cancel in the flat pattern), so $s$ vanishes for every affine image
@@ -36,7 +36,7 @@
 //! rest shape under any rigid motion (and any in-plane stretch: this term measures bending
 //! only).
 //!
-//! $V$ is quadratic: $\nabla_{x_i} V = 2c K_i s$ and $\nabla^2 V = 2c\, K K^T \otimes I_3$ with
+//! $V$ is quadratic: $\nabla_{x_i} V = 2c K_i s$ and $\nabla^2 V = 2c\thinspace K K^T \otimes I_3$ with
 //! $c = 3/(A_a + A_b)$, constant (assemble once). Unweighted: the family weight is the bending
 //! stiffness. Units: $K$ dimensionless, $c$ per page unit², $V$ dimensionless.
 //!

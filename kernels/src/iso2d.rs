@@ -1,7 +1,7 @@
 //! Midline and cover inextensibility, $C_{\mathrm{iso2D}}$ of seed `000_…` eq. 6:
 //! $$\varphi(x_i, x_j) = \lVert x_i - x_j\rVert^2 - \lVert x^0_i - x^0_j\rVert^2,$$
 //! nodes `[x_i, x_j]`, one row. With $d = x_i - x_j$: $\nabla_{x_i}\varphi = 2d$,
-//! $\nabla_{x_j}\varphi = -2d$, $\lambda\nabla^2\varphi = 2\lambda\,[[I, -I], [-I, I]]$.
+//! $\nabla_{x_j}\varphi = -2d$, $\lambda\nabla^2\varphi = 2\lambda\thinspace[[I, -I], [-I, I]]$.
 //! Units: length$^2$.
 
 use crate::error::{KernelError, squared_rest_length};

@@ -1,7 +1,7 @@
 //! Soft isometry of the active page, $V_{\mathrm{iso3D}}$ of seed `000_…` eq. 13, for a
 //! grid edge with nodes `[x_i, x_j]`:
 //! $$V = \left(\lVert d\rVert^2 - (L^0)^2\right)^2,\quad d = x_i - x_j,\ s = \lVert d\rVert^2 - (L^0)^2,$$
-//! $$\nabla_{x_i} V = 4 s\, d,\qquad \nabla^2_{x_i x_i} V = 8\, d d^T + 4 s\, I$$
+//! $$\nabla_{x_i} V = 4 s\thinspace d,\qquad \nabla^2_{x_i x_i} V = 8\thinspace d d^T + 4 s\thinspace I$$
 //! (and $\pm$ the same blocks for $x_j$). Unweighted ($w_{\mathrm{iso3D}}$ = 4000 by
 //! default). Units: length$^4$.
 //!

@@ -43,6 +43,7 @@ pub mod math;
 pub mod membrane;
 pub mod positional;
 pub mod real;
+pub mod splitmix;
 pub mod spring;
 pub mod stencil;
 pub mod term;

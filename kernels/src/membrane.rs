@@ -5,7 +5,7 @@
 //! Nodes `[x0, x1, x2]` (3D positions) with rest coordinates `[u0, u1, u2]` in the flat 2D
 //! pattern, counter-clockwise. With $B = D_m^{-1}$:
 //! $$D_m = [u_1 - u_0,\ u_2 - u_0] \in \mathbb{R}^{2\times 2},\qquad
-//!   F = [x_1 - x_0,\ x_2 - x_0]\, D_m^{-1} = [f_0\ f_1] \in \mathbb{R}^{3\times 2},$$
+//!   F = [x_1 - x_0,\ x_2 - x_0]\thinspace D_m^{-1} = [f_0\ f_1] \in \mathbb{R}^{3\times 2},$$
 //! $$E = \tfrac12\left(F^T F - I\right),\qquad
 //!   V = A_0\left(\mu \lVert E\rVert_F^2 + \tfrac{\lambda}{2}(\operatorname{tr} E)^2\right),$$
 //! $A_0 = \tfrac12 \det D_m$ the rest area, and the plane-stress Lamé parameters of the 2D
@@ -16,19 +16,19 @@
 //!
 //! Derivatives. The columns of $F$ are linear in the nodes, $f_j = \sum_i w_{ij} x_i$ with
 //! $w_{0j} = -(B_{0j} + B_{1j})$, $w_{1j} = B_{0j}$, $w_{2j} = B_{1j}$. With the second
-//! Piola–Kirchhoff stress $S = 2\mu E + \lambda \operatorname{tr}(E)\, I$ ($2\times 2$) and
+//! Piola–Kirchhoff stress $S = 2\mu E + \lambda \operatorname{tr}(E)\thinspace I$ ($2\times 2$) and
 //! $P = F S = [p_0\ p_1]$:
-//! $$\nabla_{x_i} V = A_0 \sum_j w_{ij}\, p_j,\qquad
-//!   \nabla^2_{x_a x_b} V = A_0 \sum_{j,k} w_{aj} w_{bk}\, C_{jk},$$
+//! $$\nabla_{x_i} V = A_0 \sum_j w_{ij}\thinspace p_j,\qquad
+//!   \nabla^2_{x_a x_b} V = A_0 \sum_{j,k} w_{aj} w_{bk}\thinspace C_{jk},$$
 //! $$C_{jk} = \frac{\partial p_j}{\partial f_k}
-//!   = S_{jk} I_3 + \mu\, f_k f_j^T + \lambda\, f_j f_k^T +
-//!   \mu\, \delta_{jk}\left(f_0 f_0^T + f_1 f_1^T\right).$$
+//!   = S_{jk} I_3 + \mu\thinspace f_k f_j^T + \lambda\thinspace f_j f_k^T +
+//!   \mu\thinspace \delta_{jk}\left(f_0 f_0^T + f_1 f_1^T\right).$$
 //! The part without $S_{jk} I_3$ (material stiffness) is positive semi-definite: its quadratic
 //! form in a variation $\delta F$ is $2\mu\lVert \delta E\rVert_F^2 + \lambda (\operatorname{tr}
 //! \delta E)^2$ with $\delta E = \operatorname{sym}(F^T \delta F)$. The geometric stiffness
 //! $S \otimes I_3$ is indefinite when a principal stress is negative (compression);
 //! [`Membrane::hessian_projected`] replaces $S$ there by its positive part
-//! $S^+ = \sum_k \max(\sigma_k, 0)\, v_k v_k^T$ and so is positive semi-definite, and equal to
+//! $S^+ = \sum_k \max(\sigma_k, 0)\thinspace v_k v_k^T$ and so is positive semi-definite, and equal to
 //! the exact Hessian whenever $S \succeq 0$.
 //!
 //! Units: pattern coordinates and positions in page units, $Y$ in force per length,
@@ -39,7 +39,7 @@
 //! Hessian are polynomials (degree 4, 3, 2) in the positions: any finite configuration,
 //! including coincident or collinear nodes and inverted triangles, gives finite output unless
 //! the polynomial itself overflows (the guard bounds $\lVert D_m^{-1}\rVert_F <
-//! \sqrt{2}/(\sqrt{\varepsilon}\,\ell_{\max})$; for page-unit triangles and coordinates up to
+//! \sqrt{2}/(\sqrt{\varepsilon}\thinspace\ell_{\max})$; for page-unit triangles and coordinates up to
 //! [`Real::COORD_MAX`] nothing overflows). An inverted triangle is not detected: the Green
 //! strain does not see orientation, so a reflected triangle has the energy of its mirror image.
 //! NaN input propagates to NaN output.
@@ -90,7 +90,7 @@ impl<T: Real> Membrane<T> {
     /// counter-clockwise), the 2D Young's modulus `stretch_modulus` $Y > 0$ (force per
     /// length) and Poisson's ratio `poisson` $\nu \in [0, 1/2)$.
     ///
-    /// The rest triangle must satisfy $2A_0 > \sqrt{\varepsilon}\,\ell_{\max}^2$ ($\ell_{\max}$
+    /// The rest triangle must satisfy $2A_0 > \sqrt{\varepsilon}\thinspace\ell_{\max}^2$ ($\ell_{\max}$
     /// its longest edge, $\varepsilon$ the precision's machine epsilon) and
     /// $\ell_{\max} \ge$ [`Real::LENGTH_FLOOR`].
     ///
@@ -135,7 +135,7 @@ impl<T: Real> Membrane<T> {
     }
 
     /// The two columns $(f_0, f_1)$ of the deformation gradient
-    /// $F = [x_1 - x_0,\ x_2 - x_0]\,D_m^{-1}$ ($3\times 2$, dimensionless): the images of the
+    /// $F = [x_1 - x_0,\ x_2 - x_0]\thinspace D_m^{-1}$ ($3\times 2$, dimensionless): the images of the
     /// pattern's unit X and Y directions. $F^T$ maps a 3D force into the pattern.
     #[inline]
     #[must_use]

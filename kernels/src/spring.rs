@@ -2,12 +2,12 @@
 //! stretch (grid neighbours), shear (cell diagonals) and bend (two apart) springs, each a
 //! Hooke spring between particles `[x_i, x_j]` with rest length $L^0$ and stiffness $k$.
 //! With $d = x_i - x_j$, $\ell = \lVert d\rVert$, $\hat d = d/\ell$:
-//! $$V = \tfrac12 k (\ell - L^0)^2,\quad F_i = -\nabla_{x_i} V = -k(\ell - L^0)\,\hat d,\quad F_j = -F_i,$$
+//! $$V = \tfrac12 k (\ell - L^0)^2,\quad F_i = -\nabla_{x_i} V = -k(\ell - L^0)\thinspace\hat d,\quad F_j = -F_i,$$
 //! $$\frac{\partial F_i}{\partial x_i} = -\nabla^2_{x_i x_i} V
 //!   = -k\left[\left(1 - \frac{L^0}{\ell}\right)(I - \hat d\hat d^T) + \hat d\hat d^T\right].$$
-//! Damping: the seed's per-particle viscous force $F = c\,v$ with a signed coefficient
+//! Damping: the seed's per-particle viscous force $F = c\thinspace v$ with a signed coefficient
 //! ($c = -0.7125$ in its experiment), [`particle_damping`], and the spring's axial damping
-//! $F_i = -k_d\,((v_i - v_j)\cdot\hat d)\,\hat d$, [`Spring::damping_force`].
+//! $F_i = -k_d\thinspace((v_i - v_j)\cdot\hat d)\thinspace\hat d$, [`Spring::damping_force`].
 //! Units: $k$ in force/length, lengths in page units, $c$ and $k_d$ in force·time/length.
 //!
 //! Degenerate spring ($\ell$ below [`Real::LENGTH_FLOOR`]): the direction is undefined;
@@ -110,7 +110,7 @@ impl<T: Real> Spring<T> {
     }
 
     /// Jacobian of [`Spring::damping_force`] with respect to the velocities:
-    /// $\partial F_i/\partial v_i = -k_d\,\hat d\hat d^T$ (zero when degenerate).
+    /// $\partial F_i/\partial v_i = -k_d\thinspace\hat d\hat d^T$ (zero when degenerate).
     #[must_use]
     pub fn damping_jacobian(&self, x: &NodeVecs<T, 2>, k_d: T) -> Blocks<T, 2> {
         let h = match direction::<T>(x) {
@@ -121,7 +121,7 @@ impl<T: Real> Spring<T> {
     }
 }
 
-/// The seed's per-particle damping force $F = c\,v$ (seed `003_…` Sec. 3.1; $c = -0.7125$
+/// The seed's per-particle damping force $F = c\thinspace v$ (seed `003_…` Sec. 3.1; $c = -0.7125$
 /// there, a negative coefficient opposing the motion).
 #[inline]
 #[must_use]

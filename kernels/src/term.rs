@@ -62,8 +62,8 @@ pub fn zero_vecs<T: Real, const N: usize>() -> NodeVecs<T, N> {
     [T::Vec3::ZERO; N]
 }
 
-/// Adds `w * k[a] k[b] I` to block `(a, b)`: the Hessian of $w\,\lvert \sum_a k_a x_a \rvert^2 / 2$
-/// for scalar node weights `k` (Kronecker form $w\,k k^T \otimes I_3$).
+/// Adds `w * k[a] k[b] I` to block `(a, b)`: the Hessian of $w\thinspace\lvert \sum_a k_a x_a \rvert^2 / 2$
+/// for scalar node weights `k` (Kronecker form $w\thinspace k k^T \otimes I_3$).
 #[inline]
 pub fn add_scalar_kron<T: Real, const N: usize>(out: &mut Blocks<T, N>, k: &[T; N], w: T) {
     use crate::real::Mat3Ops;

@@ -7,7 +7,7 @@
 //! $(X, Y, Z) = (T_x, T_z, T_y)$.
 //!
 //! **Time-driven flip** ([`flip_parameters`]): over $t \in [0, 1]$,
-//! $\rho = \pi\,\mathrm{smoothstep}(t)$, $\theta = \pi/2 - (\pi/2 - \theta_c)\sin\pi t$,
+//! $\rho = \pi\thinspace\mathrm{smoothstep}(t)$, $\theta = \pi/2 - (\pi/2 - \theta_c)\sin\pi t$,
 //! $A = -a H \sin\pi t$: the page lifts, curls most at mid-turn around a cone whose apex lies
 //! below the page (so the curl is stronger at the bottom corner), and lands flat on the other
 //! side. $\theta_c$ and $a$ are settings (0.3 rad and 2 by default). The seed's demo derives
@@ -280,7 +280,7 @@ impl<T: Real> ConePage<T> {
     }
 
     /// Projected Levenberg-Marquardt on the parameters flagged `free` from `p`: the normal
-    /// equations $(J^\top J + \lambda\,\mathrm{diag}(J^\top J))\,\delta = -J^\top r$, the step
+    /// equations $(J^\top J + \lambda\thinspace\mathrm{diag}(J^\top J))\thinspace\delta = -J^\top r$, the step
     /// clamped into the admissible box and accepted when $\lVert r\rVert$ falls. Returns the
     /// parameters and $\lVert r\rVert$.
     fn levenberg_marquardt(

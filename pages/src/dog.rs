@@ -4,7 +4,7 @@
 //! **Frames.** The book's frame has the binding near $x = 0$ and the blocks on a cover
 //! board; the page frame of [`super`] is the book's shifted by the grabbed page's rest
 //! corner: $x_0$ of its bound column and $y_0$ of its fore-edge, so that the page lying on
-//! its block is near $\{(u, 0, v)\}$ (the block top rises from the binding, so the inner
+//! its block is near $\lbrace(u, 0, v)\rbrace$ (the block top rises from the binding, so the inner
 //! strip of the page sits below $y = 0$).
 //!
 //! **Input.** The grab holds the grab-ring node nearest the material point (the book lets

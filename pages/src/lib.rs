@@ -8,9 +8,9 @@
 //! - [`dog::DogPage`], the active page of the DOG book of seed `000_…`, the most accurate.
 //!
 //! **The page frame.** Every model reports its page in one frame: the flat page at rest is
-//! $\{(u, 0, v) : u \in [0, W],\ v \in [0, H]\}$, with the spine along Z through the origin,
+//! $\lbrace(u, 0, v) : u \in [0, W],\ v \in [0, H]\rbrace$, with the spine along Z through the origin,
 //! X across the page (away from the spine), Y up (gravity along −Y). A page turned over the
-//! spine lies near $\{(-u, 0, v)\}$. Page coordinates $(u, v)$ name material points: $u$
+//! spine lies near $\lbrace(-u, 0, v)\rbrace$. Page coordinates $(u, v)$ name material points: $u$
 //! across from the spine, $v$ along it. Units: page units (the seed's page width is 12).
 //!
 //! **Input.** A grab at a page point $(u, v)$, the finger's position in the page frame once

@@ -14,7 +14,7 @@
 //! each:
 //! 1. the gripped particles are placed on the way to the finger (below);
 //! 2. the free particles are advanced by the integrator ([`explicit`], [`implicit`]) under the
-//!    springs, the particle damping $c\,v$ and gravity;
+//!    springs, the particle damping $c\thinspace v$ and gravity;
 //! 3. synchronization (if on);
 //! 4. the table (if on): a free particle on or under the plane $y = 0$ is put on it,
 //!    $y = 0$, and loses its downward velocity, $v_y < 0 \Rightarrow v_y = 0$; a particle

@@ -117,7 +117,7 @@ impl TouchScript {
     /// $(W, v_0)$, $v_0 = 0.2 H$ (near the bottom corner, where readers take a page), is
     /// grabbed at frame `grab_frame` and carried over the spine for `held` frames on
     /// $$x = W (1 - 0.1 \sin\varphi)\cos\varphi,\quad y = 0.7 W \sin\varphi,\quad
-    ///   z = v_0 + 0.12 H \sin\varphi,\qquad \varphi = \pi\,\mathrm{smoothstep}(s),$$
+    ///   z = v_0 + 0.12 H \sin\varphi,\qquad \varphi = \pi\thinspace\mathrm{smoothstep}(s),$$
     /// from its rest position to its mirror image $(-W, 0, v_0)$ (both exactly where a flat
     /// page puts it), then released; `frames` in all.
     #[must_use]

@@ -12,6 +12,7 @@
 //!   analysis, and the refined solve.
 //! - [`step`]: [`Solver::step`], one time step with a [`StepReport`].
 //! - [`matrix_market`]: export of the assembled KKT matrix.
+//! - [`ring`]: [`Ring`], a fixed-capacity history of states (the models' recordings).
 //!
 //! It holds no model: anything that implements [`Model`] can be stepped, and the KKT
 //! machinery ([`pattern`], [`symbolic`], [`ldlt`], [`kkt`]) is usable on its own for any
@@ -34,6 +35,7 @@ pub mod model;
 pub mod ordering;
 pub mod pattern;
 pub mod report;
+pub mod ring;
 pub mod settings;
 pub mod step;
 pub mod symbolic;
@@ -43,5 +45,6 @@ pub use kkt::Kkt;
 pub use model::{ConstraintSet, Model, PotentialSet, Term, TermVisitor};
 pub use ordering::Ordering;
 pub use report::{StepReport, StepStatus};
+pub use ring::Ring;
 pub use settings::Settings;
 pub use step::{Correction, Solver, State};

@@ -2,7 +2,7 @@
 //!
 //! Unknowns are the free coordinates ("dofs") numbered node-major, followed by one unknown per
 //! constraint row (its multiplier). The KKT matrix
-//! $$K = \begin{bmatrix} M/h^2 + \nabla^2 V\ (+\textstyle\sum_l \lambda_l \nabla^2 C_l) & \nabla C^\top \\ \nabla C & 0 \end{bmatrix}$$
+//! $$K = \begin{bmatrix} M/h^2 + \nabla^2 V\ (+\textstyle\sum_l \lambda_l \nabla^2 C_l) & \nabla C^\top \cr \nabla C & 0 \end{bmatrix}$$
 //! (DESIGN.md "Time step", seed `000_…` eq. 3-4) is stored as its upper triangle in compressed
 //! sparse columns with sorted rows and every diagonal entry present. Each term's local
 //! Hessian entry and Jacobian entry has a precomputed slot (index into the value array) or

@@ -55,7 +55,7 @@ pub struct Settings<T> {
     /// four scaling passes would cost 25 %.
     pub equilibrate: bool,
     /// A pivot with $s_k d_k \le$ `pivot_epsilon` $\cdot$ scale is regularized (scale: the
-    /// largest primal diagonal). Finite, $\ge 0$. Default $1000\,\varepsilon$.
+    /// largest primal diagonal). Finite, $\ge 0$. Default $1000\thinspace\varepsilon$.
     pub pivot_epsilon: T,
     /// A regularized pivot becomes $s_k \cdot$ `regularization` $\cdot$ scale. Finite,
     /// $> 0$. Default $\sqrt{\varepsilon}$.

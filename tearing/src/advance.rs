@@ -1,5 +1,5 @@
 //! One propagation of a tear on the sheet mesh (seed `002_…` Sec. 5.2 "Griffith", 5.3,
-//! Fig. 8): the tip moves from $p$ to $p_{\text{next}} = p + s\,t$ in the pattern.
+//! Fig. 8): the tip moves from $p$ to $p_{\text{next}} = p + s\thinspace t$ in the pattern.
 //!
 //! - **Straight on** (the tip of a tear whose direction turns by at most the threshold):
 //!   the tip vertex itself slides to $p_{\text{next}}$ ([`SheetMesh::move_vertex`]); the old

@@ -2,8 +2,8 @@
 //! $a \to b$ the fine tear follows a greedy walk over the pixels of a [`Raster`] laid on the
 //! sheet's pattern, driven by the breaking coefficient of eq. 7,
 //!
-//! $$T(x, y) = (1 - w)\, T_{\text{fibers}}(x, y) + w\, G_i(x, y), \qquad
-//!   G_i(x, y) = \exp\!\Big(-\frac{d(x, y)^2}{2\sigma^2}\Big),$$
+//! $$T(x, y) = (1 - w)\thinspace T_{\text{fibers}}(x, y) + w\thinspace G_i(x, y), \qquad
+//!   G_i(x, y) = \exp\negthinspace\Big(-\frac{d(x, y)^2}{2\sigma^2}\Big),$$
 //!
 //! with $T_{\text{fibers}}$ the [`FiberTexture`] (eq. 3), $d$ the distance from $(x, y)$ to the
 //! segment $[a, b]$ (the seed's "fracture-centered Gaussian stress field"), $w \in [0, 1]$ the
@@ -159,7 +159,7 @@ impl Raster {
         [(f64::from(i) + 0.5) * du, (f64::from(j) + 0.5) * dv]
     }
 
-    /// Row-major index $j\, n_u + i$ of pixel $(i, j)$, `None` outside the raster.
+    /// Row-major index $j\thinspace n_u + i$ of pixel $(i, j)$, `None` outside the raster.
     #[inline]
     #[must_use]
     pub fn index(&self, pixel: (u32, u32)) -> Option<usize> {
@@ -277,7 +277,7 @@ pub fn distance_to_segment(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
 }
 
 /// The breaking coefficient of seed `002_…` eq. 7 at pattern point `p`:
-/// $T = (1 - w)\, T_{\text{fibers}}(p) + w \exp(-d^2 / (2\sigma^2))$, $d$ the distance from
+/// $T = (1 - w)\thinspace T_{\text{fibers}}(p) + w \exp(-d^2 / (2\sigma^2))$, $d$ the distance from
 /// `p` to $[a, b]$. In $[0, 1]$ for finite input (settings through
 /// [`DetailSettings::sanitized`]; a non-finite distance counts as infinitely far).
 #[must_use]

@@ -1,24 +1,24 @@
 //! [`FiberTexture`]: the paper's fiber texture $T_{\text{fibers}}(u, v) \in [0, 1]$ of
 //! seed `002_…` Sec. 4.2, the resistance of the fiber network that scales the fracture energy
-//! (eq. 3, $E_f(p) = c\, T_{\text{fibers}}(u, v)\, d_p$) and drives the detail path (eq. 7).
+//! (eq. 3, $E_f(p) = c\thinspace T_{\text{fibers}}(u, v)\thinspace d_p$) and drives the detail path (eq. 7).
 //!
 //! The seed uses "a Perlin noise"; this one is Folio's own seeded gradient noise:
 //!
 //! - **Lattice gradients** from a hash: corner $(i, j)$ of octave $k$ takes one of 16 unit
-//!   vectors at angles $m\pi/8$, $m$ the top four bits of a splitmix64-style mix of
+//!   vectors at angles $m\pi/8$, $m$ the top four bits of the SplitMix64 mix ([`mix64`]) of
 //!   $(\text{seed}_k, i, j)$. No permutation table.
-//! - **Gradient noise** $n(x, y) = \mathrm{lerp}_{f(y_f)}\big(\mathrm{lerp}_{f(x_f)}(g_{00}
-//!   \cdot r_{00}, g_{10} \cdot r_{10}), \mathrm{lerp}_{f(x_f)}(g_{01} \cdot r_{01}, g_{11}
+//! - **Gradient noise** $n(x, y) = \mathrm{lerp}\_{f(y_f)}\big(\mathrm{lerp}\_{f(x_f)}(g_{00}
+//!   \cdot r_{00}, g_{10} \cdot r_{10}), \mathrm{lerp}\_{f(x_f)}(g_{01} \cdot r_{01}, g_{11}
 //!   \cdot r_{11})\big)$ with $r_{ab}$ the offset from corner $ab$ of the cell and the quintic
 //!   fade $f(t) = 6t^5 - 15t^4 + 10t^3$, so $n$ is $C^2$ and $|n| \le \sqrt{2}/2$.
 //! - **Anisotropy**: pattern coordinates are rotated into the fiber frame ($s$ along the
 //!   fibers at angle `direction` from the $u$ axis, $t$ across) and scaled,
 //!   $x = s / (\text{scale} \cdot \text{aspect})$, $y = t / \text{scale}$: lattice cells are
 //!   `scale` sheet units across the fibers and `aspect` times longer along them.
-//! - **fBm**: $N(x, y) = \sum_{k<K} g^k\, n_k(\ell^k x + o_k, \ell^k y + o'_k) \,/\, \sum_{k<K}
-//!   g^k$ with gain $g$, lacunarity $\ell$ and per-octave seeds and offsets $o_k, o'_k \in
+//! - **fBm**: $N(x, y) = \sum_{k<K} g^k\thinspace n_k(\ell^k x + o_k, \ell^k y + o_k') \thinspace/\thinspace \sum_{k<K}
+//!   g^k$ with gain $g$, lacunarity $\ell$ and per-octave seeds and offsets $o_k, o_k' \in
 //!   [0, 1)$, so $|N| \le \sqrt{2}/2$.
-//! - **Mapping to $[0, 1]$**: $T = \tfrac12 + \tfrac12\, \mathrm{clamp}(c \sqrt{2}\, N, -1,
+//! - **Mapping to $[0, 1]$**: $T = \tfrac12 + \tfrac12\thinspace \mathrm{clamp}(c \sqrt{2}\thinspace N, -1,
 //!   1)$ with the contrast $c$. At $c = 1$ the map is affine and never clamps; larger $c$
 //!   spreads the values and saturates the tails at 0 and 1.
 //!
@@ -26,6 +26,7 @@
 //! settings give the same bits on every target.
 
 use folio_kernels::math;
+use folio_kernels::splitmix::{GAMMA, mix64, unit_interval};
 
 use crate::error::{TearingError, check_range};
 
@@ -225,28 +226,11 @@ fn clamp(x: f64, lo: f64, hi: f64) -> f64 {
     }
 }
 
-/// splitmix64's output mix: a bijection of `u64` with good avalanche.
-#[inline]
-#[must_use]
-pub(crate) fn mix64(z: u64) -> u64 {
-    let z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    let z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
-}
-
-/// The top 53 bits of `h` as a number in $[0, 1)$.
-#[inline]
-#[must_use]
-fn unit_interval(h: u64) -> f64 {
-    (h >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-}
-
 /// Hash of lattice corner $(i, j)$ under `seed`.
 #[inline]
 #[must_use]
 fn corner_hash(seed: u64, i: i64, j: i64) -> u64 {
-    const GOLDEN: u64 = 0x9E37_79B9_7F4A_7C15;
-    mix64(seed ^ mix64((i as u64).wrapping_mul(GOLDEN) ^ mix64((j as u64).wrapping_add(GOLDEN))))
+    mix64(seed ^ mix64((i as u64).wrapping_mul(GAMMA) ^ mix64((j as u64).wrapping_add(GAMMA))))
 }
 
 /// $\cos(\pi/8)$ and $\sin(\pi/8)$.

@@ -21,7 +21,7 @@ pub struct TearSettings {
     /// The damage $D \in [0, 1]$ at tear tips, eq. 3 (1 elsewhere): lower makes an existing
     /// tear easier to extend than a new one to start.
     pub damage: f64,
-    /// The propagation speed constant $c$ of $p_{\text{next}} = p + c\,E_r\,t$ (sheet units
+    /// The propagation speed constant $c$ of $p_{\text{next}} = p + c\thinspace E_r\thinspace t$ (sheet units
     /// per unit of $E_r$).
     pub speed: f64,
     /// Shortest propagation step (sheet units): a step that the Griffith criterion allows is

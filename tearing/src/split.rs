@@ -31,8 +31,8 @@
 //! $\tilde F_{\text{left}}$ and $\tilde F_{\text{right}}$ and $e$ the thickness,
 //! $$E_r = \frac{(\lVert \tilde F_{\text{left}} \rVert + \lVert \tilde F_{\text{right}}
 //!   \rVert) \cos(\theta / 2)}{e},$$
-//! and the tear runs along $t = -(\hat{\tilde F}_{\text{left}} + \hat{\tilde
-//! F}_{\text{right}})$ normalized: the bisector, pointing away from the pulling points (the
+//! and the tear runs along $t = -(\hat{\tilde F}\_{\text{left}} + \hat{\tilde
+//! F}\_{\text{right}})$ normalized: the bisector, pointing away from the pulling points (the
 //! seed's "bisector of the two forces" with the forces taken as the tip's reaction). An empty
 //! cluster (nothing pulls on one side) releases nothing: $E_r = 0$.
 

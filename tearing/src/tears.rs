@@ -11,7 +11,7 @@
 //! length is $c_{\text{speed}} E_r$ clamped to
 //! [`TearSettings::min_step`]..[`TearSettings::max_step`].
 //!
-//! **Fracture energy** (eq. 3): $E_f(p) = c\,T_{\text{fibers}}(u, v)\,d_p$ with $d_p = D$ at
+//! **Fracture energy** (eq. 3): $E_f(p) = c\thinspace T_{\text{fibers}}(u, v)\thinspace d_p$ with $d_p = D$ at
 //! tear tips and 1 elsewhere.
 //!
 //! **Tears.** A propagation from a tip extends that tear. Any other start begins a new
@@ -412,7 +412,7 @@ fn segment_distance<T: Real>(p: [T; 2], a: [T; 2], b: [T; 2]) -> f64 {
 }
 
 /// The columns $F e_u$, $F e_v$ of triangle `t`'s deformation gradient
-/// $F = [x_1 - x_0,\ x_2 - x_0]\,[u_1 - u_0,\ u_2 - u_0]^{-1}$ (zero for a degenerate
+/// $F = [x_1 - x_0,\ x_2 - x_0]\thinspace[u_1 - u_0,\ u_2 - u_0]^{-1}$ (zero for a degenerate
 /// pattern triangle).
 #[must_use]
 pub fn deformation_gradient<T: Real>(mesh: &SheetMesh<T>, t: usize) -> [T::Vec3; 2] {

@@ -5,7 +5,7 @@
 //! $T_{\text{right}}$, each transparent on the other side of the detail path.
 //!
 //! Masks are one `u8` per pixel of a [`Raster`] ([`OPAQUE`] = 255, [`TRANSPARENT`] = 0),
-//! row-major with row $j$ at index $j\, n_u + i$ and row 0 at $v = 0$ (the bottom of the
+//! row-major with row $j$ at index $j\thinspace n_u + i$ and row 0 at $v = 0$ (the bottom of the
 //! sheet; [`AlphaPair::to_rgba`] flips to top-row-first images). *Left* is the side to the
 //! left of the tear direction $a \to b$ with $u$ to the right and $v$ up: the side of the
 //! counter-clockwise normal $n = (-e_v, e_u)$ of the unit direction $e$.

@@ -11,34 +11,30 @@ pub mod models;
 pub mod terms;
 
 use folio_kernels::real::{Mat3Ops, Vec3Ops};
+use folio_kernels::splitmix::SplitMix64;
 use folio_kernels::term::{Blocks, NodeVecs};
 use folio_kernels::{Constraint, Potential, Real};
 use glam::{DMat3, DQuat, DVec3};
 
-/// SplitMix64: a tiny seeded generator, so every "random" test is reproducible.
+/// A tiny seeded generator ([`SplitMix64`]), so every "random" test is reproducible.
 #[derive(Clone, Debug)]
-pub struct Rng(u64);
+pub struct Rng(SplitMix64);
 
 impl Rng {
     /// A generator with the given seed.
     #[must_use]
     pub fn new(seed: u64) -> Self {
-        Self(seed)
+        Self(SplitMix64::new(seed))
     }
 
     /// Next 64 random bits.
     pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
+        self.0.next_u64()
     }
 
     /// Uniform in `[lo, hi)`.
     pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        let u = (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
-        lo + (hi - lo) * u
+        self.0.uniform(lo, hi)
     }
 
     /// A vector with components uniform in `[-r, r)`.
@@ -333,7 +329,7 @@ pub fn area2_and_longest(u: [[f64; 2]; 3]) -> (f64, f64) {
 }
 
 /// A random counter-clockwise pattern triangle in $[-2, 2]^2$ with
-/// $2A \ge$ `shape` $\cdot\,\ell_{\max}^2$ and $\ell_{\max}^2 \ge$ `min_longest_sq`.
+/// $2A \ge$ `shape` $\cdot\thinspace\ell_{\max}^2$ and $\ell_{\max}^2 \ge$ `min_longest_sq`.
 pub fn pattern_triangle(r: &mut Rng, shape: f64, min_longest_sq: f64) -> [[f64; 2]; 3] {
     loop {
         let u = [(); 3].map(|()| [r.uniform(-2.0, 2.0), r.uniform(-2.0, 2.0)]);

@@ -290,7 +290,7 @@ fn cone_curl_jacobian() {
     assert!(worst <= FD_TOL, "cone Jacobian error {worst:e}");
 }
 
-/// A random counter-clockwise rest triangle of the pattern with $2A \ge 0.05\,\ell_{\max}^2$
+/// A random counter-clockwise rest triangle of the pattern with $2A \ge 0.05\thinspace\ell_{\max}^2$
 /// (angles down to about 3 degrees).
 fn pattern_triangle(r: &mut Rng) -> [[f64; 2]; 3] {
     folio_tests::pattern_triangle(r, 0.05, 0.04)

@@ -1337,7 +1337,7 @@ fn shared_page_turn_variants() {
 
 /// The largest angular frequency $\omega_{max}$ (1/s) of the flat network of `settings` with
 /// its fixed particles held: the square root of the largest eigenvalue of $M^{-1}K$, $K$ the
-/// springs' stiffness matrix at rest ($\sum_s k_s\,n_s n_s^\top$ blocks), by power
+/// springs' stiffness matrix at rest ($\sum_s k_s\thinspace n_s n_s^\top$ blocks), by power
 /// iteration.
 fn omega_max(settings: SpringSettings<f64>) -> f64 {
     let page = SpringPage::<f64>::new(settings).unwrap();

@@ -231,13 +231,13 @@ fn invariant_terms_are_invariant_under_rigid_motion() {
     assert!(worst <= 1e-10, "rigid motion changed a term by {worst:e}");
 }
 
-/// A random counter-clockwise pattern triangle with $2A \ge 0.2\,\ell_{\max}^2$.
+/// A random counter-clockwise pattern triangle with $2A \ge 0.2\thinspace\ell_{\max}^2$.
 fn pattern_triangle(r: &mut Rng) -> [[f64; 2]; 3] {
     folio_tests::pattern_triangle(r, 0.2, 0.1)
 }
 
 /// A random hinge pattern: the triangle `[u0, u1, u2]` and `u3` on the other side of the
-/// edge `(u0, u1)`, both triangles with $2A \ge 0.2\,\ell_{\max}^2$.
+/// edge `(u0, u1)`, both triangles with $2A \ge 0.2\thinspace\ell_{\max}^2$.
 fn pattern_hinge(r: &mut Rng) -> [[f64; 2]; 4] {
     loop {
         let [u0, u1, u2] = pattern_triangle(r);

@@ -134,7 +134,7 @@ fn deform<T: Real>(m: &mut SheetMesh<T>, f: impl Fn([f64; 2]) -> [f64; 3]) {
 /// the pattern direction at `angle` (radians from the u axis) through the pattern point
 /// `origin`, bending toward +Z (the normal of the flat, counter-clockwise sheet). With
 /// $a$ the axis and $b = (\sin\alpha, -\cos\alpha)$ ($a$ turned clockwise), $s = (p - o)\cdot
-/// b$, $t = (p - o)\cdot a$: $x = o + t\,a + r\sin(s/r)\,b + r(1 - \cos(s/r))\,\hat z$.
+/// b$, $t = (p - o)\cdot a$: $x = o + t\thinspace a + r\sin(s/r)\thinspace b + r(1 - \cos(s/r))\thinspace\hat z$.
 /// For `angle` = π/2 and origin 0 this is $(r\sin(u/r), v, r(1 - \cos(u/r)))$.
 fn cylinder(r: f64, angle: f64, origin: [f64; 2]) -> impl Fn([f64; 2]) -> [f64; 3] {
     let (a, b) = ([angle.cos(), angle.sin()], [angle.sin(), -angle.cos()]);

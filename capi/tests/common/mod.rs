@@ -70,7 +70,7 @@ pub fn held_position(h: FolioBookHandle) -> [f64; 3] {
 }
 
 /// The page turn's finger path (the C example's): from the held node `start` over the
-/// spine to its mirror image, on $\varphi = \pi\,\mathrm{smoothstep}(s)$:
+/// spine to its mirror image, on $\varphi = \pi\thinspace\mathrm{smoothstep}(s)$:
 /// $x = x_0 (1 - 0.1\sin\varphi)\cos\varphi$, $y = y_0 + 0.7 x_0 \sin\varphi$,
 /// $z = z_0 + 0.12 H \sin\varphi$, for `steps` points.
 pub fn turn_path(start: [f64; 3], height: f64, steps: u32) -> Vec<[f64; 3]> {

@@ -1,8 +1,9 @@
 //! Triangle rasterization: near-plane clipping, projection, optional back-face culling,
 //! edge functions at pixel centres and perspective-correct interpolation.
 
+use glam::Vec3;
+
 use super::camera::Camera;
-use super::vector::V3;
 
 /// Attributes interpolated across a triangle: world position (3), normal (3), UV (2).
 pub const ATTRIBUTES: usize = 8;
@@ -11,7 +12,7 @@ pub const ATTRIBUTES: usize = 8;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Corner {
     /// View coordinates $(x_v, y_v, z_v)$.
-    pub view: V3,
+    pub view: Vec3,
     /// Attributes to interpolate.
     pub attributes: [f32; ATTRIBUTES],
 }
@@ -32,9 +33,7 @@ pub struct Fragment {
 /// Linear interpolation of two corners at parameter `t`.
 fn lerp(a: &Corner, b: &Corner, t: f32) -> Corner {
     let mut c = *a;
-    for k in 0..3 {
-        c.view[k] = a.view[k] + t * (b.view[k] - a.view[k]);
-    }
+    c.view = a.view + t * (b.view - a.view);
     for k in 0..ATTRIBUTES {
         c.attributes[k] = a.attributes[k] + t * (b.attributes[k] - a.attributes[k]);
     }
@@ -74,7 +73,7 @@ fn edge(a: [f32; 2], b: [f32; 2], p: [f32; 2]) -> f32 {
 /// ([`Camera::project`]), and a pixel centre $p$ is covered when its barycentric
 /// coordinates $\lambda_i = E_i(p) / E$ (edge functions over twice the signed area) are all
 /// $\ge 0$. Attributes $a$ are interpolated perspective-correctly,
-/// $a(p) = \sum_i \lambda_i a_i / z_i \,/\, \sum_i \lambda_i / z_i$.
+/// $a(p) = \sum_i \lambda_i a_i / z_i \thinspace/\thinspace \sum_i \lambda_i / z_i$.
 ///
 /// With `cull`, triangles that are clockwise seen from the eye (back faces of a mesh whose
 /// triangles are counter-clockwise seen from the side their normals point to) are skipped.
@@ -85,9 +84,9 @@ pub fn rasterize(
     cull: bool,
     mut fragment: impl FnMut(Fragment),
 ) {
-    let all_finite = triangle.iter().all(|c| {
-        c.view.iter().all(|v| v.is_finite()) && c.attributes.iter().all(|v| v.is_finite())
-    });
+    let all_finite = triangle
+        .iter()
+        .all(|c| c.view.is_finite() && c.attributes.iter().all(|v| v.is_finite()));
     if !all_finite {
         return;
     }
@@ -166,18 +165,18 @@ mod tests {
 
     fn camera() -> Camera {
         Camera::framing(
-            [0.0, 10.0, 0.0],
+            Vec3::new(0.0, 10.0, 0.0),
             [[-1.0, 0.0, -1.0], [1.0, 0.0, 1.0]],
             [64, 64],
             0.0,
         )
     }
 
-    fn corner(camera: &Camera, p: V3) -> Corner {
+    fn corner(camera: &Camera, p: [f32; 3]) -> Corner {
         let mut attributes = [0.0; ATTRIBUTES];
         attributes[..3].copy_from_slice(&p);
         Corner {
-            view: camera.view_of(p),
+            view: camera.view_of(p.into()),
             attributes,
         }
     }

@@ -4,7 +4,7 @@
 //! The page (seed eq. 15) reflects, specularly reflects and transmits:
 //! $$f = k_d f_{\text{Lambert}} + k_s f_{\text{CT}} + k_t f_{\text{Lambert,back}},$$
 //! with (eq. 16, 17, and $k_s = F_{\text{Schlick}}$ from the text after eq. 17)
-//! $$k_t = (1 - F_{\text{Schlick,back}})\, e^{-\alpha t}, \qquad
+//! $$k_t = (1 - F_{\text{Schlick,back}})\thinspace e^{-\alpha t}, \qquad
 //!   k_d = (1 - F_{\text{Schlick}})(1 - e^{-\alpha t}), \qquad k_s = F_{\text{Schlick}},$$
 //! where $t$ is the page's thickness and $\alpha$ the paper's absorption ([`Paper`]).
 //! Folio's choices where the seed names none:
@@ -12,25 +12,27 @@
 //! - $F_{\text{Schlick}}(\cos) = F_0 + (1 - F_0)(1 - \cos)^5$ (Schlick 1994), evaluated at
 //!   $\cos = h \cdot v$ for $k_s$ and $k_d$ (light arriving on the side seen) and at
 //!   $\cos = \lvert n \cdot l\rvert$ for $k_t$ (light arriving on the other side);
-//! - $f_{\text{CT}} = D\,G / (4 (n\cdot l)(n\cdot v))$ (the Fresnel factor is $k_s$) with
+//! - $f_{\text{CT}} = D\thinspace G / (4 (n\cdot l)(n\cdot v))$ (the Fresnel factor is $k_s$) with
 //!   the GGX / Trowbridge-Reitz distribution
 //!   $D = a^2 / (\pi ((n\cdot h)^2 (a^2 - 1) + 1)^2)$, $a = r^2$ for roughness $r$, and the
-//!   separable Smith masking $G = G_1(n\cdot l)\, G_1(n\cdot v)$,
+//!   separable Smith masking $G = G_1(n\cdot l)\thinspace G_1(n\cdot v)$,
 //!   $G_1(x) = 2x / (x + \sqrt{a^2 + (1 - a^2) x^2})$ (Walter et al. 2007);
 //! - $f_{\text{Lambert}} = \rho / \pi$ with the albedo $\rho$ of the side seen, and
-//!   $f_{\text{Lambert,back}} = \rho\, \rho_{\text{back}} / \pi$: transmitted light crosses
+//!   $f_{\text{Lambert,back}} = \rho\thinspace \rho_{\text{back}} / \pi$: transmitted light crosses
 //!   the print of both sides, so the back's print shows through, mirrored.
 //!
 //! With a point light of irradiance $E$ (normal incidence, shadowing included) from the unit
-//! direction $l$, the outgoing radiance towards $v$ is $E\,\lvert n\cdot l\rvert\, f$: only
+//! direction $l$, the outgoing radiance towards $v$ is $E\thinspace\lvert n\cdot l\rvert\thinspace f$: only
 //! the first two terms for $n \cdot l > 0$, only the third for $n \cdot l < 0$. A constant
 //! ambient radiance $A$ arrives from both sides, shaded with $F = F_0$:
-//! $A\,((1 - F_0)(1 - e^{-\alpha t})\,\rho + (1 - F_0)\,e^{-\alpha t} \rho\,\rho_{\text{back}})$.
+//! $A\thinspace((1 - F_0)(1 - e^{-\alpha t})\thinspace\rho + (1 - F_0)\thinspace e^{-\alpha t} \rho\thinspace\rho_{\text{back}})$.
 //! Energy: $k_d + k_s \le 1$ and $k_d + k_t \le 1$ for $F, F_{\text{back}} \in [0, 1]$.
 
 use core::f32::consts::PI;
 
-use super::vector::{V3, add, dot, normalize_or};
+use glam::Vec3;
+
+use super::vector::normalize_or;
 
 /// Optical parameters of the paper (seed `000_…` eq. 15-17).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -39,7 +41,7 @@ pub struct Paper {
     /// stack of $k$ pages is $k t$ thick ([`super::ContactSheet::add_frame`]).
     pub thickness: f32,
     /// Absorption $\alpha$ (1 / page unit), $\ge 0$: one page transmits $e^{-\alpha t}$.
-    /// Default 200: $e^{-1.5} \approx 22\,\%$ for one page (thin printing paper lets through
+    /// Default 200: $e^{-1.5} \approx 0.22$ for one page (thin printing paper lets through
     /// roughly a fifth of the light), $e^{-15} \approx 0$ for ten.
     pub absorption: f32,
     /// Roughness $r \in (0, 1]$ (GGX $a = r^2$). Default 0.65: matte uncoated paper.
@@ -104,13 +106,13 @@ pub fn coefficients(paper: &Paper, thickness: f32, fresnel: f32, fresnel_back: f
 /// $f_{\text{CT}}$ without its Fresnel factor (module docs), for unit $n, v, l$ with
 /// $n \cdot l > 0$; 0 when $n \cdot v \le 0$.
 #[must_use]
-pub fn cook_torrance(n: V3, v: V3, l: V3, roughness: f32) -> f32 {
-    let (nl, nv) = (dot(n, l), dot(n, v));
+pub fn cook_torrance(n: Vec3, v: Vec3, l: Vec3, roughness: f32) -> f32 {
+    let (nl, nv) = (n.dot(l), n.dot(v));
     if !(nl > 0.0 && nv > 0.0) {
         return 0.0;
     }
-    let h = normalize_or(add(l, v), n);
-    let nh = dot(n, h).clamp(0.0, 1.0);
+    let h = normalize_or(l + v, n);
+    let nh = n.dot(h).clamp(0.0, 1.0);
     let a = (roughness * roughness).max(1e-3);
     let a2 = a * a;
     let q = nh * nh * (a2 - 1.0) + 1.0;
@@ -123,11 +125,11 @@ pub fn cook_torrance(n: V3, v: V3, l: V3, roughness: f32) -> f32 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PagePoint {
     /// Unit normal of the side seen.
-    pub normal: V3,
+    pub normal: Vec3,
     /// Unit direction to the eye.
-    pub view: V3,
+    pub view: Vec3,
     /// Unit direction to the light.
-    pub light: V3,
+    pub light: Vec3,
     /// Irradiance $E$ at normal incidence (shadowing included).
     pub irradiance: f32,
     /// Ambient radiance $A$.
@@ -143,12 +145,12 @@ pub struct PagePoint {
 /// Outgoing radiance of a page point (module docs: eq. 15-17 plus ambient).
 #[must_use]
 pub fn page_radiance(paper: &Paper, p: &PagePoint) -> [f32; 3] {
-    let nl = dot(p.normal, p.light);
+    let nl = p.normal.dot(p.light);
     let [kd_a, _, kt_a] = coefficients(paper, p.thickness, paper.f0, paper.f0);
     let mut out = [0, 1, 2].map(|c| p.ambient * p.albedo[c] * (kd_a + kt_a * p.albedo_back[c]));
     if nl > 0.0 {
-        let h = normalize_or(add(p.light, p.view), p.normal);
-        let fresnel = schlick(paper.f0, dot(h, p.view));
+        let h = normalize_or(p.light + p.view, p.normal);
+        let fresnel = schlick(paper.f0, h.dot(p.view));
         let [kd, ks, _] = coefficients(paper, p.thickness, fresnel, paper.f0);
         let specular = ks * cook_torrance(p.normal, p.view, p.light, paper.roughness);
         for (o, a) in out.iter_mut().zip(p.albedo) {
@@ -164,16 +166,16 @@ pub fn page_radiance(paper: &Paper, p: &PagePoint) -> [f32; 3] {
     out
 }
 
-/// Outgoing radiance of an opaque Lambertian point: $E \max(n\cdot l, 0)\,\rho/\pi + A\rho$.
+/// Outgoing radiance of an opaque Lambertian point: $E \max(n\cdot l, 0)\thinspace\rho/\pi + A\rho$.
 #[must_use]
 pub fn lambert_radiance(
     albedo: [f32; 3],
-    normal: V3,
-    light: V3,
+    normal: Vec3,
+    light: Vec3,
     irradiance: f32,
     ambient: f32,
 ) -> [f32; 3] {
-    let nl = dot(normal, light).max(0.0);
+    let nl = normal.dot(light).max(0.0);
     albedo.map(|a| a * (irradiance * nl / PI + ambient))
 }
 
@@ -233,24 +235,24 @@ mod tests {
     }
 
     /// The GGX lobe with Smith masking reflects at most what arrives (white furnace bound
-    /// for the specular part: $\int f_{\text{CT}} F \cos\theta_l \, d\omega \le 1$).
+    /// for the specular part: $\int f_{\text{CT}} F \cos\theta_l \thinspace d\omega \le 1$).
     #[test]
     fn cook_torrance_is_bounded() {
-        let n = [0.0, 1.0, 0.0];
+        let n = Vec3::Y;
         for &r in &[0.2, 0.65, 1.0] {
             for &view_angle in &[0.0f32, 0.6, 1.2] {
-                let v = [view_angle.sin(), view_angle.cos(), 0.0];
+                let v = Vec3::new(view_angle.sin(), view_angle.cos(), 0.0);
                 let mut sum = 0.0;
                 let steps = 200;
                 for i in 0..steps {
                     for j in 0..steps {
                         let theta = (i as f32 + 0.5) / steps as f32 * PI / 2.0;
                         let phi = (j as f32 + 0.5) / steps as f32 * 2.0 * PI;
-                        let l = [
+                        let l = Vec3::new(
                             theta.sin() * phi.cos(),
                             theta.cos(),
                             theta.sin() * phi.sin(),
-                        ];
+                        );
                         let d_omega =
                             theta.sin() * (PI / 2.0 / steps as f32) * (2.0 * PI / steps as f32);
                         sum += cook_torrance(n, v, l, r) * theta.cos() * d_omega;
@@ -271,10 +273,10 @@ mod tests {
         let paper = Paper::default();
         let white = [0.9; 3];
         let ink = [0.2; 3];
-        let point = |light: V3, back: [f32; 3]| PagePoint {
-            normal: [0.0, 1.0, 0.0],
-            view: normalize_or([0.3, 1.0, 0.2], [0.0, 1.0, 0.0]),
-            light: normalize_or(light, [0.0, 1.0, 0.0]),
+        let point = |light: [f32; 3], back: [f32; 3]| PagePoint {
+            normal: Vec3::Y,
+            view: normalize_or(Vec3::new(0.3, 1.0, 0.2), Vec3::Y),
+            light: normalize_or(light.into(), Vec3::Y),
             irradiance: 3.0,
             ambient: 0.0,
             albedo: white,

@@ -5,7 +5,7 @@ use folio_geometry::mesh::TriMesh;
 
 use super::camera::Camera;
 use super::raster::{ATTRIBUTES, Corner, rasterize};
-use super::vector::{V3, add, dot, finite, scale, sub};
+use glam::Vec3;
 
 /// A shadow map: the nearest inverse depth per texel seen from the light (0 = nothing).
 #[derive(Clone, Debug)]
@@ -14,7 +14,7 @@ pub struct ShadowMap {
     inverse_depth: Vec<f32>,
     bias: f32,
     texel: f32,
-    light: V3,
+    light: Vec3,
 }
 
 impl ShadowMap {
@@ -25,13 +25,13 @@ impl ShadowMap {
     /// diagonal count as lit; both exceed a page's thickness, so a page does not shadow its
     /// own far side (its light reaches that side by transmission).
     #[must_use]
-    pub fn new(light: V3, bounds: [[f32; 3]; 2], resolution: usize) -> Self {
+    pub fn new(light: Vec3, bounds: [[f32; 3]; 2], resolution: usize) -> Self {
         let resolution = resolution.max(1);
         let camera = Camera::framing(light, bounds, [resolution, resolution], 0.01);
-        let [lo, hi] = bounds;
-        let centre = [0, 1, 2].map(|a| 0.5 * (lo[a] + hi[a]));
-        let texel = camera.view_of(centre)[2].max(0.0) / camera.focal;
-        let diagonal = super::vector::length(super::vector::sub(hi, lo));
+        let [lo, hi] = bounds.map(Vec3::from);
+        let centre = 0.5 * (lo + hi);
+        let texel = camera.view_of(centre).z.max(0.0) / camera.focal;
+        let diagonal = (hi - lo).length();
         Self {
             camera,
             inverse_depth: vec![0.0; resolution * resolution],
@@ -65,14 +65,14 @@ impl ShadowMap {
     /// nearest depth + bias" at `p` moved along $\pm$`normal` towards the light (type docs).
     /// Points outside the map or behind the light are lit.
     #[must_use]
-    pub fn light_at(&self, p: V3, normal: V3) -> f32 {
-        let towards = if dot(normal, sub(self.light, p)) >= 0.0 {
+    pub fn light_at(&self, p: Vec3, normal: Vec3) -> f32 {
+        let towards = if normal.dot(self.light - p) >= 0.0 {
             2.0 * self.texel
         } else {
             -2.0 * self.texel
         };
-        let v = self.camera.view_of(add(p, scale(normal, towards)));
-        if v[2].is_nan() || v[2] <= self.camera.near {
+        let v = self.camera.view_of(p + normal * towards);
+        if v.z.is_nan() || v.z <= self.camera.near {
             return 1.0;
         }
         let s = self.camera.project(v);
@@ -87,7 +87,7 @@ impl ShadowMap {
                 } else {
                     0.0
                 };
-                if stored <= 0.0 || v[2] <= 1.0 / stored + self.bias {
+                if stored <= 0.0 || v.z <= 1.0 / stored + self.bias {
                     lit += 1.0;
                 }
             }
@@ -100,18 +100,18 @@ impl ShadowMap {
 /// as attributes; `None` for an index out of range or a non-finite position.
 pub fn corners(camera: &Camera, mesh: &TriMesh, t: &[u32; 3]) -> Option<[Corner; 3]> {
     let mut out = [Corner {
-        view: [0.0; 3],
+        view: Vec3::ZERO,
         attributes: [0.0; ATTRIBUTES],
     }; 3];
     for (corner, &index) in out.iter_mut().zip(t) {
         let i = usize::try_from(index).ok()?;
         let p = *mesh.positions.get(i)?;
-        if !finite(p) {
+        if !p.iter().all(|c| c.is_finite()) {
             return None;
         }
         let n = mesh.normals.get(i).copied().unwrap_or([0.0; 3]);
         let uv = mesh.uvs.get(i).copied().unwrap_or([0.0; 2]);
-        corner.view = camera.view_of(p);
+        corner.view = camera.view_of(p.into());
         corner.attributes = [p[0], p[1], p[2], n[0], n[1], n[2], uv[0], uv[1]];
     }
     Some(out)
@@ -138,14 +138,14 @@ mod tests {
         mesh.triangles.extend([[0, 1, 2], [0, 2, 3]]);
         mesh.surfaces.extend([Surface::Cover; 2]);
         let bounds = [[-5.0, 0.0, -5.0], [5.0, 2.0, 5.0]];
-        let mut map = ShadowMap::new([0.0, 20.0, 0.0], bounds, 256);
+        let mut map = ShadowMap::new(Vec3::new(0.0, 20.0, 0.0), bounds, 256);
         map.render(&mesh);
-        let up = [0.0, 1.0, 0.0];
-        assert_eq!(map.light_at([0.0, 0.0, 0.0], up), 0.0);
-        assert_eq!(map.light_at([4.0, 0.0, 4.0], up), 1.0);
+        let up = Vec3::Y;
+        assert_eq!(map.light_at(Vec3::ZERO, up), 0.0);
+        assert_eq!(map.light_at(Vec3::new(4.0, 0.0, 4.0), up), 1.0);
         // The occluder itself is lit, on both faces (the far one by transmission).
-        assert_eq!(map.light_at([0.0, 2.0, 0.0], up), 1.0);
-        assert_eq!(map.light_at([0.0, 2.0, 0.0], [0.0, -1.0, 0.0]), 1.0);
-        assert_eq!(map.light_at([f32::NAN, 0.0, 0.0], up), 1.0);
+        assert_eq!(map.light_at(Vec3::new(0.0, 2.0, 0.0), up), 1.0);
+        assert_eq!(map.light_at(Vec3::new(0.0, 2.0, 0.0), Vec3::NEG_Y), 1.0);
+        assert_eq!(map.light_at(Vec3::new(f32::NAN, 0.0, 0.0), up), 1.0);
     }
 }

@@ -4,13 +4,14 @@
 //! average the supersamples).
 
 use folio_geometry::mesh::{Surface, TriMesh};
+use glam::Vec3;
 
 use super::camera::Camera;
 use super::raster::{ATTRIBUTES, Corner, Fragment, rasterize};
 use super::shading::{PagePoint, Paper, lambert_radiance, page_radiance, tone_map};
 use super::shadow::{ShadowMap, corners};
 use super::texture::{PAGE_EDGES, Side, TABLE, page_albedo, surface_albedo};
-use super::vector::{V3, add, dot, length, normalize_or, scale, sub};
+use super::vector::normalize_or;
 
 /// Eye distance from the box's centre, in box diagonals (sets the perspective's strength).
 const EYE_DISTANCE: f32 = 1.4;
@@ -86,11 +87,11 @@ pub struct TileImage {
 #[derive(Clone, Debug)]
 pub struct Stage {
     camera: Camera,
-    light: V3,
+    light: Vec3,
     /// Radiant intensity: irradiance at distance $d$ is intensity / $d^2$.
     intensity: f32,
     shadow: ShadowMap,
-    table: [V3; 4],
+    table: [Vec3; 4],
     paper: Paper,
     tile: [usize; 2],
     supersample: usize,
@@ -108,32 +109,31 @@ impl Stage {
         tile: [usize; 2],
         supersample: usize,
         paper: Paper,
-        [eye, light]: [V3; 2],
+        [eye, light]: [Vec3; 2],
     ) -> Self {
-        let [lo, hi] = bounds;
-        let centre = [0, 1, 2].map(|a| 0.5 * (lo[a] + hi[a]));
-        let diagonal = length(sub(hi, lo)).max(1e-3);
+        let [lo, hi] = bounds.map(Vec3::from);
+        let centre = 0.5 * (lo + hi);
+        let diagonal = (hi - lo).length().max(1e-3);
         let size = [tile[0] * supersample, tile[1] * supersample];
-        let eye = add(
-            centre,
-            scale(normalize_or(eye, [0.0, 1.0, 0.0]), EYE_DISTANCE * diagonal),
-        );
+        let eye = centre + normalize_or(eye, Vec3::Y) * (EYE_DISTANCE * diagonal);
         let camera = Camera::framing(eye, bounds, size, MARGIN);
         let light_distance = LIGHT_DISTANCE * diagonal;
-        let light = add(
-            centre,
-            scale(normalize_or(light, [0.0, 1.0, 0.0]), light_distance),
-        );
-        let y = lo[1] - 1e-4 * diagonal;
+        let light = centre + normalize_or(light, Vec3::Y) * light_distance;
+        let y = lo.y - 1e-4 * diagonal;
         let r = TABLE_EXTENT * diagonal;
-        let (x0, x1, z0, z1) = (centre[0] - r, centre[0] + r, centre[2] - r, centre[2] + r);
+        let (x0, x1, z0, z1) = (centre.x - r, centre.x + r, centre.z - r, centre.z + r);
         Self {
             camera,
             light,
             intensity: CENTRE_IRRADIANCE * light_distance * light_distance,
             shadow: ShadowMap::new(light, bounds, SHADOW_RESOLUTION),
             // Counter-clockwise seen from above.
-            table: [[x0, y, z0], [x0, y, z1], [x1, y, z1], [x1, y, z0]],
+            table: [
+                Vec3::new(x0, y, z0),
+                Vec3::new(x0, y, z1),
+                Vec3::new(x1, y, z1),
+                Vec3::new(x1, y, z0),
+            ],
             paper,
             tile,
             supersample,
@@ -160,7 +160,7 @@ impl Stage {
         let samples = &mut self.samples;
         let table = self.table.map(|p| Corner {
             view: camera.view_of(p),
-            attributes: [p[0], p[1], p[2], 0.0, 1.0, 0.0, 0.0, 0.0],
+            attributes: [p.x, p.y, p.z, 0.0, 1.0, 0.0, 0.0, 0.0],
         });
         for t in [[0, 1, 2], [0, 2, 3]] {
             rasterize(&camera, &t.map(|k| table[k]), true, |f| {
@@ -230,13 +230,13 @@ impl Stage {
             return BACKGROUND;
         };
         let a = sample.attributes;
-        let p = [a[0], a[1], a[2]];
+        let p = Vec3::new(a[0], a[1], a[2]);
         let uv = [a[6], a[7]];
-        let view = normalize_or(sub(self.camera.eye, p), [0.0, 1.0, 0.0]);
-        let normal = normalize_or([a[3], a[4], a[5]], view);
-        let to_light = sub(self.light, p);
-        let d2 = dot(to_light, to_light).max(1e-12);
-        let light = scale(to_light, 1.0 / d2.sqrt());
+        let view = normalize_or(self.camera.eye - p, Vec3::Y);
+        let normal = normalize_or(Vec3::new(a[3], a[4], a[5]), view);
+        let to_light = self.light - p;
+        let d2 = to_light.dot(to_light).max(1e-12);
+        let light = to_light * (1.0 / d2.sqrt());
         let irradiance = self.intensity / d2 * self.shadow.light_at(p, normal);
         let lambert = |albedo| lambert_radiance(albedo, normal, light, irradiance, AMBIENT);
         match material {
@@ -262,7 +262,7 @@ impl Stage {
                 )
             }
             Material::Mesh(Surface::PageEdge) => lambert(PAGE_EDGES),
-            Material::Mesh(surface) => lambert(surface_albedo(surface, uv, p[0])),
+            Material::Mesh(surface) => lambert(surface_albedo(surface, uv, p.x)),
         }
     }
 }

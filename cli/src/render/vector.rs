@@ -1,69 +1,18 @@
-//! The few `f32` 3-vector operations the rasterizer needs, on plain arrays.
+//! The rasterizer's vectors are glam's `f32` [`Vec3`]; this adds the one operation whose
+//! edge cases Folio fixes itself.
 
-/// A 3-vector.
-pub type V3 = [f32; 3];
+use glam::Vec3;
 
-/// $a + b$.
+/// $a / \lVert a \rVert$ (as $a \cdot (1/\lVert a \rVert)$), or `fallback` when
+/// $\lVert a \rVert$ is zero or not finite. (glam's `normalize_or` tests the reciprocal
+/// instead, which also falls back for lengths below $1/f_{\max}$.)
 #[inline]
 #[must_use]
-pub fn add(a: V3, b: V3) -> V3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-/// $a - b$.
-#[inline]
-#[must_use]
-pub fn sub(a: V3, b: V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-/// $s\,a$.
-#[inline]
-#[must_use]
-pub fn scale(a: V3, s: f32) -> V3 {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-
-/// $a \cdot b$.
-#[inline]
-#[must_use]
-pub fn dot(a: V3, b: V3) -> f32 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// $a \times b$.
-#[inline]
-#[must_use]
-pub fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-/// $\lVert a \rVert$.
-#[inline]
-#[must_use]
-pub fn length(a: V3) -> f32 {
-    dot(a, a).sqrt()
-}
-
-/// $a / \lVert a \rVert$, or `fallback` for a zero or non-finite `a`.
-#[inline]
-#[must_use]
-pub fn normalize_or(a: V3, fallback: V3) -> V3 {
-    let len = length(a);
+pub fn normalize_or(a: Vec3, fallback: Vec3) -> Vec3 {
+    let len = a.length();
     if len > 0.0 && len.is_finite() {
-        scale(a, 1.0 / len)
+        a * (1.0 / len)
     } else {
         fallback
     }
-}
-
-/// Every component finite.
-#[inline]
-#[must_use]
-pub fn finite(a: V3) -> bool {
-    a.iter().all(|c| c.is_finite())
 }

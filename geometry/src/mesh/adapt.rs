@@ -14,7 +14,7 @@ pub const MIN_END_FRACTION: f64 = 0.01;
 /// "Segment length adaptation") by translating $c_{n-1}$ along the last segment:
 /// $$L_< = \sum_{k=0}^{n-3} \lVert c_{k+1} - c_k \rVert, \quad
 ///   u = \frac{c_{n-1} - c_{n-2}}{\lVert c_{n-1} - c_{n-2} \rVert}, \quad
-///   c_{n-1} \leftarrow c_{n-2} + \max\!\big(L - L_<,\; f \lVert c_{n-1} - c_{n-2} \rVert\big)\,u$$
+///   c_{n-1} \leftarrow c_{n-2} + \max\negthinspace\big(L - L_<,\thickspace f \lVert c_{n-1} - c_{n-2} \rVert\big)\thinspace u$$
 /// with $L$ = `target` and $f$ = [`MIN_END_FRACTION`], so the chain's length becomes exactly
 /// $L$ whenever $L - L_<$ is at least $f$ times the last segment.
 ///

@@ -80,15 +80,15 @@ pub struct BlockProfile<'a> {
 /// With midline nodes $m_0, \dots, m_{n-1}$, unit segment tangents $t_k$ and segment normals
 /// $s_k$ on the material side ([`BlockSide`]), the node normal is
 /// $n_k = (s_{k-1} + s_k)/\lVert\cdot\rVert$ ($s_0$ and $s_{n-2}$ at the ends). The top curve
-/// is the fan $m_0 + t\,d_q$, $q = 0, \dots, F$ (with $F$ = `fan`) followed by
-/// $m_k + t\,n_k$, $k = 1, \dots, n-1$; its part from the last fan point on (which has $n$
+/// is the fan $m_0 + t\thinspace d_q$, $q = 0, \dots, F$ (with $F$ = `fan`) followed by
+/// $m_k + t\thinspace n_k$, $k = 1, \dots, n-1$; its part from the last fan point on (which has $n$
 /// nodes, one per midline node) is then length-adapted to the midline's length
 /// ([`adapt_length`]), which shears the fore-edge.
 ///
 /// Fan ("upsampling at binding"): in the frame $e_1 = n_0$, $e_2 = -t_0$, with $d$ the unit
 /// binding direction, $\beta = \operatorname{atan2}(\max(d \cdot e_2, 0),\ d \cdot e_1)
 /// \in [0, \pi]$ and
-/// $$d_q = \cos\theta_q\, e_1 + \sin\theta_q\, e_2, \qquad \theta_q = \beta\,(1 - q/F),$$
+/// $$d_q = \cos\theta_q\thinspace e_1 + \sin\theta_q\thinspace e_2, \qquad \theta_q = \beta\thinspace(1 - q/F),$$
 /// so $d_0 = d$, $d_F = n_0$ and the directions are uniformly distributed in angle between
 /// them, sweeping around the binding end of the block (a rounded profile). $F = 0$ gives the
 /// single direction $n_0$ (the plain offset).

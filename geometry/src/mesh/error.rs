@@ -90,7 +90,7 @@ pub(super) fn check_points<const D: usize>(points: &[[f64; D]]) -> Result<(), Me
     Ok(())
 }
 
-/// `Ok` for a length in $(0, \text{MAX\_COORDINATE}]$.
+/// `Ok` for a length in $(0, M]$, $M$ = [`MAX_COORDINATE`].
 pub(super) fn check_positive(field: &'static str, value: f64) -> Result<(), MeshError> {
     if !(value.is_finite() && value > 0.0) {
         Err(MeshError::NonPositive { field })
@@ -101,7 +101,7 @@ pub(super) fn check_positive(field: &'static str, value: f64) -> Result<(), Mesh
     }
 }
 
-/// `Ok` for a length in $[0, \text{MAX\_COORDINATE}]$.
+/// `Ok` for a length in $[0, M]$, $M$ = [`MAX_COORDINATE`].
 pub(super) fn check_non_negative(field: &'static str, value: f64) -> Result<(), MeshError> {
     if value.is_finite() && (0.0..=MAX_COORDINATE).contains(&value) {
         Ok(())

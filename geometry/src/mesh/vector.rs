@@ -24,7 +24,7 @@ pub(super) fn sub<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
     core::array::from_fn(|k| a[k] - b[k])
 }
 
-/// $s\,a$.
+/// $s\thinspace a$.
 #[inline]
 #[must_use]
 pub(super) fn scale<const D: usize>(a: [f64; D], s: f64) -> [f64; D] {

@@ -7,11 +7,11 @@
 //! (positive when the surface turns toward the normal of the counter-clockwise pattern
 //! orientation, [`dihedral`]; zero on the boundary), $\ell_e$ its pattern length and
 //! $\hat n_e$ the unit pattern normal of the edge, the triangle's pattern shape operator is
-//! $$S_t = \frac{1}{A_t} \sum_{e \in t} \frac{\theta_e\,\ell_e}{2}\, \hat n_e \hat n_e^\top$$
+//! $$S_t = \frac{1}{A_t} \sum_{e \in t} \frac{\theta_e\thinspace\ell_e}{2}\thinspace \hat n_e \hat n_e^\top$$
 //! (the edge-based discrete shape operator, not given in the seed; a 2x2 symmetric matrix,
 //! units 1/length, $A_t$ the pattern area). It is exact on triangles whose edges all lie
 //! inside the sheet when the mesh follows the rulings: on a cylinder meshed by quads with
-//! edges along its rulings every quad is planar and $S_t = \kappa\, b b^\top$ exactly ($b$
+//! edges along its rulings every quad is planar and $S_t = \kappa\thinspace b b^\top$ exactly ($b$
 //! across the rulings). On a coarse mesh it is then averaged, weighted by pattern area, over
 //! the triangle and its edge neighbours, using only *complete* triangles (no edge on the
 //! boundary: a boundary edge has no dihedral angle, so such a triangle misses the bending

@@ -1,7 +1,7 @@
 //! The mechanical energy of the particle system (seed `003_…` Sec. 2.1):
-//! $$E = \underbrace{\tfrac12 m\sum_k \lVert v_k\rVert^2}_{\text{kinetic}} +
-//!   \underbrace{\sum_s \tfrac12 k_s(\lVert x_a - x_b\rVert - L^0_s)^2}_{\text{springs}} +
-//!   \underbrace{w\sum_k y_k}_{\text{gravity}},$$
+//! $$E = \underbrace{\tfrac12 m\sum_k \lVert v_k\rVert^2}\_{\text{kinetic}} +
+//!   \underbrace{\sum_s \tfrac12 k_s(\lVert x_a - x_b\rVert - L^0_s)^2}\_{\text{springs}} +
+//!   \underbrace{w\sum_k y_k}\_{\text{gravity}},$$
 //! gravity measured from the plane $y = 0$ of the flat page. With damping $c < 0$ and no
 //! input the exact dynamics lose energy at the rate $\dot E = c\sum_k\lVert v_k\rVert^2$.
 //! Units: mass·length²/s².

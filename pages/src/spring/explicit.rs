@@ -1,12 +1,12 @@
 //! The seed's semi-implicit (symplectic) Euler step of the free particles (seed `003_…`
 //! Sec. 2.1 and Sec. 3.1 steps 3-5):
-//! $$F_k = \sum_{s \ni k} F_s(x^n) + c\,v_k^n - w\,\hat y,\qquad
-//!   v_k^{n+1} = v_k^n + \frac{h}{m} F_k,\qquad x_k^{n+1} = x_k^n + h\,v_k^{n+1},$$
+//! $$F_k = \sum_{s \ni k} F_s(x^n) + c\thinspace v_k^n - w\thinspace\hat y,\qquad
+//!   v_k^{n+1} = v_k^n + \frac{h}{m} F_k,\qquad x_k^{n+1} = x_k^n + h\thinspace v_k^{n+1},$$
 //! with the spring forces $F_s$ of [`folio_kernels::spring::Spring::force`], the particle
-//! damping $c\,v$ of [`particle_damping`] and the weight $w = m g$ along −Y. Fixed and
+//! damping $c\thinspace v$ of [`particle_damping`] and the weight $w = m g$ along −Y. Fixed and
 //! gripped particles are not advanced (the caller has placed them); their positions enter
 //! the spring forces. $h$ is one substep, the frame's step over
-//! [`super::SpringSettings::substeps`]. Stable while $h\,\omega_{max} < 2$ (see
+//! [`super::SpringSettings::substeps`]. Stable while $h\thinspace\omega_{max} < 2$ (see
 //! [`super::Integrator::SemiImplicitEuler`]).
 
 use folio_kernels::spring::particle_damping;

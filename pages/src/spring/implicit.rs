@@ -6,7 +6,7 @@
 //! written into the state before the step), one Newton iteration with line search, then
 //! $v = (x - x^n)/h$, $h$ one substep ([`super::SpringSettings::substep`]; the page takes
 //! [`super::SpringSettings::substeps`] of them per frame, one solve each). The last term is
-//! the particle damping $c\,v^{n+1}$ taken implicitly ([`super::network`] module docs).
+//! the particle damping $c\thinspace v^{n+1}$ taken implicitly ([`super::network`] module docs).
 //!
 //! The symbolic analysis depends on which particles are free: it is redone when the roles
 //! change (at a grab or a release, which call [`ImplicitStepper::analyse`], so that the frame

@@ -5,12 +5,12 @@
 //!
 //! **Timing.** Key frame $k$ holds the particles at frame $k s$ of the run, $s$ the interval
 //! in whole frames ([`super::SpringSettings::key_frame_stride`]), i.e. at time
-//! $t_k = k\,s\,h$.
+//! $t_k = k\thinspace s\thinspace h$.
 //!
 //! **Interpolation.** Linear between the bracketing key frames, the seed's "simple
 //! interpolation": with $\Delta = s h$, $k = \lfloor t/\Delta\rfloor$ and
 //! $\alpha = t/\Delta - k$,
-//! $$x(t) \approx (1 - \alpha)\,X_k + \alpha\,X_{k+1},$$
+//! $$x(t) \approx (1 - \alpha)\thinspace X_k + \alpha\thinspace X_{k+1},$$
 //! exact at the key frames and in error by at most $\frac{\Delta^2}{8}\max\lVert\ddot x\rVert$
 //! between them (the linear interpolation remainder). Catmull-Rom would have an
 //! $O(\Delta^4)$ error on smooth motion but overshoots at the grab and the release, where the
@@ -21,22 +21,19 @@
 //! `size_of::<T::Vec3>()` bytes (16 for `f32`, 24 for `f64`): 100 key frames (10 s at 0.1 s)
 //! of the book page's 108 particles take 173 kB in `f32`, of the seed's 36 particles 58 kB.
 
-use alloc::vec;
-use alloc::vec::Vec;
 use folio_kernels::{Real, Vec3Ops};
+use folio_solvers::Ring;
 
 use crate::PageError;
 
 /// A recording of particle positions at regular key frames (module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct KeyFrames<T: Real> {
-    particles: usize,
     stride: u32,
     time_step: T,
-    capacity: usize,
-    len: usize,
     dropped: usize,
-    positions: Vec<T::Vec3>,
+    /// The key frames, one row of `particles` positions each (module docs, **Memory**).
+    frames: Ring<T::Vec3>,
 }
 
 impl<T: Real> KeyFrames<T> {
@@ -46,20 +43,17 @@ impl<T: Real> KeyFrames<T> {
     #[must_use]
     pub fn with_capacity(particles: usize, stride: u32, time_step: T, capacity: usize) -> Self {
         Self {
-            particles,
             stride: stride.max(1),
             time_step,
-            capacity,
-            len: 0,
             dropped: 0,
-            positions: vec![T::Vec3::ZERO; capacity.saturating_mul(particles)],
+            frames: Ring::with_capacity(particles, capacity, T::Vec3::ZERO),
         }
     }
 
     /// Particles per key frame.
     #[must_use]
     pub fn particles(&self) -> usize {
-        self.particles
+        self.frames.width()
     }
 
     /// Frames between key frames, $s$.
@@ -77,19 +71,19 @@ impl<T: Real> KeyFrames<T> {
     /// Key frames recorded.
     #[must_use]
     pub fn len(&self) -> usize {
-        self.len
+        self.frames.len()
     }
 
     /// `true` before the first key frame.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.len == 0
+        self.frames.is_empty()
     }
 
     /// Key frames the recording can hold.
     #[must_use]
     pub fn capacity(&self) -> usize {
-        self.capacity
+        self.frames.capacity()
     }
 
     /// Key frames refused because the recording was full.
@@ -101,51 +95,38 @@ impl<T: Real> KeyFrames<T> {
     /// The time of the last key frame, $(n - 1)\Delta$ (0 when empty).
     #[must_use]
     pub fn duration(&self) -> T {
-        self.interval() * T::from_f64(self.len.saturating_sub(1) as f64)
+        self.interval() * T::from_f64(self.len().saturating_sub(1) as f64)
     }
 
     /// The frames run up to the last key frame, $(n - 1) s$.
     #[must_use]
     pub fn frames(&self) -> u64 {
-        self.len.saturating_sub(1) as u64 * u64::from(self.stride)
+        self.len().saturating_sub(1) as u64 * u64::from(self.stride)
     }
 
     /// Key frame `k`, if recorded.
     #[must_use]
     pub fn frame(&self, k: usize) -> Option<&[T::Vec3]> {
-        if k < self.len {
-            self.positions
-                .get(k * self.particles..(k + 1) * self.particles)
-        } else {
-            None
-        }
+        self.frames.get(k)
     }
 
     /// Forgets every key frame (keeps the memory).
     pub fn clear(&mut self) {
-        self.len = 0;
+        self.frames.clear();
         self.dropped = 0;
     }
 
     /// Appends a key frame; `false` (and nothing recorded) when full or when `x` does not
     /// hold one position per particle. Does not allocate.
     pub fn push(&mut self, x: &[T::Vec3]) -> bool {
-        if x.len() != self.particles {
+        if x.len() != self.frames.width() {
             return false;
         }
-        if self.len >= self.capacity {
+        if self.frames.is_full() {
             self.dropped += 1;
             return false;
         }
-        let at = self.len * self.particles;
-        match self.positions.get_mut(at..at + self.particles) {
-            Some(slot) => {
-                slot.copy_from_slice(x);
-                self.len += 1;
-                true
-            }
-            None => false,
-        }
+        self.frames.push(x)
     }
 
     /// The positions at frame `frame` of the recorded run into `out` (module docs): key frame
@@ -178,7 +159,7 @@ impl<T: Real> KeyFrames<T> {
             });
         }
         let s = (t / self.interval()).to_f64();
-        let last = self.len.saturating_sub(1);
+        let last = self.len().saturating_sub(1);
         let (k, alpha) = if s.is_nan() || s <= 0.0 {
             (0, 0.0)
         } else if s >= last as f64 {
@@ -192,8 +173,8 @@ impl<T: Real> KeyFrames<T> {
     }
 
     fn check(&self, out: &[T::Vec3]) -> Result<(), PageError> {
-        crate::check_count(self.particles, out.len())?;
-        if self.len == 0 {
+        crate::check_count(self.particles(), out.len())?;
+        if self.is_empty() {
             return Err(PageError::InvalidInput {
                 what: "replay of an empty recording",
             });
@@ -204,7 +185,7 @@ impl<T: Real> KeyFrames<T> {
     /// `out = (1 - alpha) X_k + alpha X_{k+1}`, with `k` clamped to the recording and an
     /// exact copy for `alpha == 0` or at the last key frame.
     fn blend(&self, k: u64, alpha: T, out: &mut [T::Vec3]) {
-        let last = self.len.saturating_sub(1);
+        let last = self.len().saturating_sub(1);
         let k = usize::try_from(k).unwrap_or(usize::MAX).min(last);
         let (Some(a), next) = (self.frame(k), self.frame(k + 1)) else {
             return;

@@ -4,7 +4,7 @@
 //! **The seed's surface.** With the particles $P_{ij}$ at material coordinates
 //! $(u_i, v_j)$, $u_i = W i/(n_x - 1)$, $v_j = H j/(n_z - 1)$, the seed interpolates all of
 //! them at once,
-//! $$S(u, v) = \sum_{i=0}^{n_x-1}\sum_{j=0}^{n_z-1} \ell_i(u)\,m_j(v)\,P_{ij},\qquad
+//! $$S(u, v) = \sum_{i=0}^{n_x-1}\sum_{j=0}^{n_z-1} \ell_i(u)\thinspace m_j(v)\thinspace P_{ij},\qquad
 //!   \ell_i(u) = \prod_{k \ne i}\frac{u - u_k}{u_i - u_k},\quad
 //!   m_j(v) = \prod_{k \ne j}\frac{v - v_k}{v_j - v_k},$$
 //! a polynomial of degree $n_x - 1$ in $u$ and $n_z - 1$ in $v$ with $S(u_i, v_j) = P_{ij}$
@@ -13,7 +13,7 @@
 //! **Local stencils (a departure from the seed).** The seed keeps 6 particles per side and
 //! says Runge's phenomenon need not be considered. It must be beyond that: equispaced
 //! interpolation amplifies wiggles between the nodes, its Lebesgue constant grows like
-//! $2^n/(e\,n\ln n)$ (measured 3.1 for the seed's 6 nodes, 10.9 for 9, 51 for 12 and
+//! $2^n/(e\thinspace n\ln n)$ (measured 3.1 for the seed's 6 nodes, 10.9 for 9, 51 for 12 and
 //! $5.9\cdot 10^3$ for 20: the worst amplification of a particle's deviation from a
 //! polynomial into the surface). On the shared page turn of the book page ($9 \times 12$
 //! particles, [`super::SpringSettings::default`], render grid $24 \times 34$ quads) the
@@ -24,9 +24,9 @@
 //! 27 % (mean 4.6 %) and $y = -0.37$. So each direction uses the Lagrange polynomial of a
 //! chosen degree $p$ (the setting `interpolation_degree`) through the $p + 1$ consecutive
 //! particles $a, \dots, a + p$ nearest the point,
-//! $$a(t) = \min\!\Big(\max\!\Big(\big\lfloor t/\Delta\big\rfloor -
+//! $$a(t) = \min\negthinspace\Big(\max\negthinspace\Big(\big\lfloor t/\Delta\big\rfloor -
 //!   \big\lfloor\tfrac{p-1}{2}\big\rfloor,\ 0\Big),\ n - 1 - p\Big),\qquad
-//!   S(u, v) = \sum_{i=a(u)}^{a(u)+p}\sum_{j=a(v)}^{a(v)+p}\ell^a_i(u)\,m^a_j(v)\,P_{ij}$$
+//!   S(u, v) = \sum_{i=a(u)}^{a(u)+p}\sum_{j=a(v)}^{a(v)+p}\ell^a_i(u)\thinspace m^a_j(v)\thinspace P_{ij}$$
 //! ($\Delta$ the particle spacing; $\ell^a_i$, $m^a_j$ the Lagrange basis of the stencil
 //! only): centred on the particle cell holding $t$ for odd $p$, one-sided near the page
 //! border (the start clamped to the grid). Properties:
@@ -49,7 +49,7 @@
 //!
 //! **Table.** A polynomial through particles that lie on the table next to lifted ones
 //! dips under it between them (the cubic through heights $0, 0, c, 4c$ is
-//! $c\,t(t-1)(t+1)/6 < 0$ on the first cell): $y = -0.05$ at worst on the shared page turn
+//! $c\thinspace t(t-1)(t+1)/6 < 0$ on the first cell): $y = -0.05$ at worst on the shared page turn
 //! at degree 3. With the table on ([`LagrangeSurface::with_floor`], the page's setting
 //! `floor`) a surface point under the plane $y = 0$ is lifted onto it, the contact every
 //! free particle obeys: particles on or above the table are still interpolated exactly. (A
@@ -62,7 +62,7 @@
 //! the basis is the unit vector, so a render node on a particle reproduces it to rounding.
 //!
 //! Cost: [`LagrangeSurface::eval`] $O(p^2)$ per point, [`LagrangeSurface::sample`]
-//! $O(n_x\,p)$ per render row plus $O(p)$ per render node; no allocation (the basis values
+//! $O(n_x\thinspace p)$ per render row plus $O(p)$ per render node; no allocation (the basis values
 //! live on the stack).
 
 use alloc::vec::Vec;
@@ -256,7 +256,7 @@ impl<T: Real> LagrangeSurface<T> {
     /// ([`material_point`]) into `out`, for particle positions `x`. Separable: per render
     /// row the particle rows of its stencil are first contracted along $v$,
     /// $R_i = \sum_j m^a_j(v) P_{ij}$ for every $i$, then each node is
-    /// $\sum_i \ell^a_i(u) R_i$ over its stencil: $O(n_x\,p)$ per render row plus $O(p)$ per
+    /// $\sum_i \ell^a_i(u) R_i$ over its stencil: $O(n_x\thinspace p)$ per render row plus $O(p)$ per
     /// node. A particle grid that does not match `x` gives zero vectors.
     ///
     /// # Errors

@@ -2,20 +2,20 @@
 //! [`Model`] the implicit solver can step.
 //!
 //! Particle $(i, j)$, index $k = i + n_x j$ ([`QuadGrid`]), rests at
-//! $\bar x_k = (u_i, 0, v_j)$ with $u_i = W\,i/(n_x - 1)$, $v_j = H\,j/(n_z - 1)$ (the page
+//! $\bar x_k = (u_i, 0, v_j)$ with $u_i = W\thinspace i/(n_x - 1)$, $v_j = H\thinspace j/(n_z - 1)$ (the page
 //! frame of [`crate`]). Springs ([`Spring`], $V = \tfrac12 k(\lVert x_a - x_b\rVert - L^0)^2$):
 //! - stretch between $(i, j)$–$(i{+}1, j)$ and $(i, j)$–$(i, j{+}1)$,
 //! - shear across both diagonals of every cell,
 //! - bend between $(i, j)$–$(i{+}2, j)$ and $(i, j)$–$(i, j{+}2)$,
 //!
 //! each with the rest length of its pair, $L^0 = \lVert \bar x_a - \bar x_b\rVert$, which on a
-//! square grid is [`SpringKind::rest_length`] of the spacing. Gravity $V = w\,y$ per particle
+//! square grid is [`SpringKind::rest_length`] of the spacing. Gravity $V = w\thinspace y$ per particle
 //! ([`Gravity`] with weight $w = m g$, the setting `particle_weight`).
 //!
-//! **Implicit damping.** The seed's particle damping $F = c\,v$ is not a potential, but over an
+//! **Implicit damping.** The seed's particle damping $F = c\thinspace v$ is not a potential, but over an
 //! implicit-Euler step of $h$ (the substep, [`SpringSettings::substep`]) with
 //! $v^{n+1} = (x - x^n)/h$ it is the force of
-//! $V_c = -\frac{c}{2h}\lVert x - x^n\rVert^2$, $-\nabla V_c = \frac{c}{h}(x - x^n) = c\,v^{n+1}$:
+//! $V_c = -\frac{c}{2h}\lVert x - x^n\rVert^2$, $-\nabla V_c = \frac{c}{h}(x - x^n) = c\thinspace v^{n+1}$:
 //! a [`Positional`] pull towards $x^n$ with family weight $-c/(2h) \ge 0$, re-targeted every
 //! frame ([`SpringNetwork::set_damping_targets`]).
 //!

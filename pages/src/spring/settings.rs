@@ -48,7 +48,7 @@ pub enum Grip {
 pub enum Integrator {
     /// The seed's semi-implicit (symplectic) Euler, Sec. 3.1 steps 3-5:
     /// $v^{n+1} = v^n + h F(x^n, v^n)/m$, $x^{n+1} = x^n + h v^{n+1}$. Explicit in the forces:
-    /// stable only while $h\,\omega_{max} < 2$ ($\omega_{max}^2 \approx 4 \sum k / m$ over the
+    /// stable only while $h\thinspace\omega_{max} < 2$ ($\omega_{max}^2 \approx 4 \sum k / m$ over the
     /// three spring families), $h$ the substep $h/n$ with [`SpringSettings::substeps`].
     SemiImplicitEuler,
     /// Implicit Euler by [`folio_solvers::Solver`] (seed `000_…` eq. 2-4) on the same springs, with the
@@ -78,7 +78,7 @@ pub struct SpringSettings<T> {
     pub shear_stiffness: T,
     /// Stiffness $k$ of the bend springs (two apart along a grid line), finite, $\ge 0$.
     pub bend_stiffness: T,
-    /// Particle damping coefficient $c$ of $F = c\,v$ (seed Sec. 3.1: $c = -0.7125$), finite,
+    /// Particle damping coefficient $c$ of $F = c\thinspace v$ (seed Sec. 3.1: $c = -0.7125$), finite,
     /// $\le 0$ (a positive coefficient would feed energy in).
     pub damping: T,
     /// Gravity force on one particle, $m g$, along −Y (seed Sec. 3.1: 0.00981), finite,
@@ -90,7 +90,7 @@ pub struct SpringSettings<T> {
     /// the synchronization and the table run $n$ times per frame with the step $h/n$, the
     /// gripped particles moving on the straight line to their frame target. Numerics, not
     /// physics (the seed's experiment takes one step per frame, $n = 1$): the explicit
-    /// integrator is stable while $(h/n)\,\omega_{max} < 2$, so $n$ substeps allow springs
+    /// integrator is stable while $(h/n)\thinspace\omega_{max} < 2$, so $n$ substeps allow springs
     /// $n^2$ times stiffer. With [`Integrator::ImplicitEuler`] each substep is one sparse
     /// solve; one per frame is already stable there. Default 8.
     pub substeps: u32,
@@ -129,8 +129,8 @@ pub struct SpringSettings<T> {
 
 impl<T: Real> Default for SpringSettings<T> {
     /// The shared book page: $W = 12$, $H = 12\sqrt2$, $9 \times 12$ particles, unit page mass
-    /// spread over the particles ($m = 1/108$), gravity $9.81\,m$ per particle, the seed's
-    /// damping rate ($c = -0.7125\,m$, i.e. $0.7125\,\mathrm{s}^{-1}$), the spine fixed, an
+    /// spread over the particles ($m = 1/108$), gravity $9.81\thinspace m$ per particle, the seed's
+    /// damping rate ($c = -0.7125\thinspace m$, i.e. $0.7125\thinspace\mathrm{s}^{-1}$), the spine fixed, an
     /// edge grip, semi-implicit Euler at $h = 1/60$ in 8 substeps with synchronization, a
     /// table under the page, and a cubic render surface.
     ///
@@ -139,10 +139,10 @@ impl<T: Real> Default for SpringSettings<T> {
     /// ($k = 1067, 267, 267$). The largest frequency of the flat network with the spine
     /// fixed, measured by power iteration on its stiffness matrix (`omega_max` in
     /// `tests/tests/page_spring.rs`), is $\omega_{max} = 756\ \mathrm{s}^{-1}$; with
-    /// $n = 8$ substeps, $(h/n)\,\omega_{max} = 1.58 < 2$ at $h = 1/60$ (the explicit
+    /// $n = 8$ substeps, $(h/n)\thinspace\omega_{max} = 1.58 < 2$ at $h = 1/60$ (the explicit
     /// stability bound, [`Integrator::SemiImplicitEuler`]). That is the same margin as the
     /// earlier default of one step per frame and $k/m = 1800, 450, 450$
-    /// ($\omega_{max} = 94.5$, $h\,\omega_{max} = 1.58$): stiffness grows with $n^2$.
+    /// ($\omega_{max} = 94.5$, $h\thinspace\omega_{max} = 1.58$): stiffness grows with $n^2$.
     /// Stiffer springs are what keeps the page from stretching under the finger: on the
     /// shared page turn (`TouchScript::page_turn`, render grid $24 \times 34$ quads) the
     /// particle grid's max stretch per frame averages 0.8 % (worst 2.8 %) and the render

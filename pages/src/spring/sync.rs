@@ -49,7 +49,7 @@
 //! of the groups when the finger turns): there $\Delta x/h$ would turn the jump onto the
 //! group lines into speed (a random state of the seed page, $E = 52$, jumped to
 //! $E = 4.8\cdot 10^4$ in one frame), while the mean never adds kinetic energy
-//! ($\sum_{k\in F_g}\lVert v_k\rVert^2 \ge |F_g|\,\lVert\bar v_g\rVert^2$).
+//! ($\sum_{k\in F_g}\lVert v_k\rVert^2 \ge |F_g|\thinspace\lVert\bar v_g\rVert^2$).
 //!
 //! Fixed and gripped particles are neither moved nor counted.
 

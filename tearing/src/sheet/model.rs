@@ -1,6 +1,6 @@
 //! [`SheetModel`]: the sheet as a [`Model`] of the implicit step (seed `002_…` Sec. 5.1,
 //! "the standard FEM used by the physical simulation step"):
-//! $$V(x) = \sum_{t} V^{\text{membrane}}_t(x) + w_b \sum_{e} V^{\text{hinge}}_e(x) + g \sum_i m_i\, y_i,$$
+//! $$V(x) = \sum_{t} V^{\text{membrane}}_t(x) + w_b \sum_{e} V^{\text{hinge}}_e(x) + g \sum_i m_i\thinspace y_i,$$
 //! one [`Membrane`] per triangle (Saint Venant–Kirchhoff on the pattern, stiff: paper barely
 //! stretches), one [`Hinge`] per interior edge (the quadratic bending of a flat-rest sheet),
 //! gravity when on. Masses are lumped: a third of each triangle's pattern area times the
