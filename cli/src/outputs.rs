@@ -70,11 +70,10 @@ impl Outputs {
             settings.light = SHEET_LIGHT;
             sheet_bounds(folio_scene::sheet::size(scene))
         } else {
-            settings.paper.thickness = scene
-                .book
-                .as_ref()
-                .and_then(|b| b.get_ref().thickness.as_ref())
-                .map_or(settings.paper.thickness, |t| *t.get_ref() as f32);
+            // The book's paper (its default is the renderer's 0.0075 too).
+            if let Some(book) = &scene.book {
+                settings.paper.thickness = book.get_ref().page_thickness as f32;
+            }
             let [w, h] = scene.page_size();
             book_bounds(w, h)
         };
