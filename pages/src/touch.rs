@@ -251,3 +251,58 @@ fn number(w: &str) -> Option<f64> {
 fn whole(w: &str) -> Option<u32> {
     w.parse::<u32>().ok()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SCRIPT: &str = "folio-touch 1\nframes 6  # a comment\n\ngrab 11 3 at 2\n\
+        2 10 1 3\n3 9 2 3\nrelease 4\n";
+
+    #[test]
+    fn a_script_reads_back_what_it_writes() {
+        let script = TouchScript::parse(SCRIPT).unwrap();
+        assert_eq!(
+            (script.frames, script.grab, script.grab_frame),
+            (6, [11.0, 3.0], 2)
+        );
+        assert_eq!(script.path, [[10.0, 1.0, 3.0], [9.0, 2.0, 3.0]]);
+        assert_eq!(script.release_frame(), 4);
+        assert_eq!(TouchScript::parse(&script.to_text()).unwrap(), script);
+    }
+
+    #[test]
+    fn every_bad_line_is_named() {
+        let cases = [
+            ("", 1),
+            ("folio-touch 2\n", 1),
+            ("folio-touch 1\nframes -1\n", 2),
+            ("folio-touch 1\nframes 6\ngrab 1 2 at x\n", 3),
+            ("folio-touch 1\nframes 6\ngrab 1 2 at 0\n0 1 2 inf\n", 4),
+            ("folio-touch 1\nframes 6\ngrab 1 2 at 0\n1 1 2 3\n", 4),
+            (
+                "folio-touch 1\nframes 6\ngrab 1 2 at 0\n0 1 2 3\nrelease 3\n",
+                5,
+            ),
+            ("folio-touch 1\nframes 6\nwave\n", 3),
+            (
+                "folio-touch 1\nframes 1\ngrab 1 2 at 0\n0 1 2 3\n1 1 2 3\nrelease 2\n",
+                0,
+            ),
+            ("folio-touch 1\nframes 6\ngrab 1 2 at 0\n", 0),
+        ];
+        for (text, line) in cases {
+            let e = TouchScript::parse(text).expect_err(text);
+            assert_eq!(e.line, line, "{text:?}: {}", e.message);
+        }
+    }
+
+    #[test]
+    fn numbers_are_finite_and_frames_whole() {
+        assert_eq!(number("2.5"), Some(2.5));
+        assert_eq!(number("NaN"), None);
+        assert_eq!(whole("7"), Some(7));
+        assert_eq!(whole("-7"), None);
+        assert_eq!(whole("7.0"), None);
+    }
+}

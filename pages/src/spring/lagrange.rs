@@ -308,3 +308,71 @@ impl<T: Real> LagrangeSurface<T> {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The stencil's basis at `t` as (start, values).
+    fn basis(axis: &Axis<f64>, t: f64) -> (usize, Vec<f64>) {
+        let mut out = [0.0; MAX_PARTICLES_PER_SIDE];
+        let a = axis.basis(t, &mut out);
+        (a, out[..=axis.degree].to_vec())
+    }
+
+    #[test]
+    fn the_weights_are_signed_binomials() {
+        let axis = Axis::<f64>::new(9, 4.0, 4);
+        assert_eq!(axis.weights, [1.0, -4.0, 6.0, -4.0, 1.0]);
+        // The degree is cut to the nodes there are.
+        assert_eq!(Axis::<f64>::new(3, 1.0, 7).degree, 2);
+        assert_eq!(Axis::<f64>::new(1, 1.0, 3).degree, 1);
+    }
+
+    #[test]
+    fn the_basis_is_a_partition_of_unity_that_reproduces_its_degree() {
+        let axis = Axis::<f64>::new(9, 4.0, 3);
+        for k in 0..=40 {
+            let t = 4.0 * f64::from(k) / 40.0 + 1e-3;
+            let (a, l) = basis(&axis, t);
+            assert!(
+                a + axis.degree < 9,
+                "stencil {a} runs off the nodes at t = {t}"
+            );
+            let sum: f64 = l.iter().sum();
+            assert!((sum - 1.0).abs() < 1e-12, "sum {sum} at t = {t}");
+            // A cubic is reproduced exactly by the cubic stencil.
+            let cubic = |x: f64| x * x * x - 2.0 * x + 0.5;
+            let p: f64 = l
+                .iter()
+                .enumerate()
+                .map(|(i, w)| w * cubic(axis.nodes[a + i]))
+                .sum();
+            assert!(
+                (p - cubic(t)).abs() < 1e-10,
+                "{p} vs {} at t = {t}",
+                cubic(t)
+            );
+        }
+    }
+
+    #[test]
+    fn at_a_node_the_basis_is_the_unit_vector() {
+        let axis = Axis::<f64>::new(5, 2.0, 2);
+        for (i, &t) in axis.nodes.iter().enumerate() {
+            let (a, l) = basis(&axis, t);
+            for (k, &v) in l.iter().enumerate() {
+                assert_eq!(v, if a + k == i { 1.0 } else { 0.0 }, "node {i}");
+            }
+        }
+    }
+
+    #[test]
+    fn stencils_start_centred_and_stay_on_the_page() {
+        let axis = Axis::<f64>::new(9, 8.0, 3);
+        assert_eq!(axis.start(-5.0), 0);
+        assert_eq!(axis.start(f64::NAN), 0);
+        assert_eq!(axis.start(4.5), 3);
+        assert_eq!(axis.start(100.0), 5);
+    }
+}
