@@ -49,7 +49,8 @@ impl<T: Real> State<T> {
     }
 }
 
-/// Everything sized by one topology: the KKT system and the step's vectors.
+/// Everything sized by one topology: the KKT system and the step's vectors, allocated
+/// together by [`Solver::analyse`].
 #[derive(Clone, Debug)]
 struct Workspace<T: Real> {
     version: u64,
@@ -80,8 +81,15 @@ struct Workspace<T: Real> {
 }
 
 /// The time stepper: settings, and the symbolic analysis and buffers of the last topology it
-/// saw. Setup (the first step, or a step after a topology change) allocates; every other
-/// step does not.
+/// saw.
+///
+/// Owns its [`Settings`] and, once a model is analysed, one workspace for that topology: the
+/// [`Kkt`] system (pattern, symbolic analysis, factor and values) and the step's vectors
+/// (`dofs + rows` entries for the KKT right-hand side, product and solution, one per dof,
+/// row or node for the rest). The workspace is allocated at setup: the first step,
+/// [`Solver::analyse`] or [`Solver::linearize`], or a step after a change of topology
+/// version, ordering, constraint-Hessian switch or equilibration. Every other step
+/// allocates nothing.
 #[derive(Clone, Debug)]
 pub struct Solver<T: Real> {
     settings: Settings<T>,
@@ -229,105 +237,20 @@ impl<T: Real> Solver<T> {
         }
         let mut converged = false;
         for iteration in 0..s.newton_iterations {
-            let e = w.evaluate(model, h, false, Derivatives::Second)?;
-            if !e.finite {
-                report.status = if iteration == 0 {
-                    StepStatus::NonFiniteInput
-                } else {
-                    StepStatus::NumericalFailure
-                };
-                return Ok(report);
-            }
-            w.fill_rhs(h);
-            let residual = w.residual(h);
-            report.residual = Some(residual);
-            report.constraint_residual = Some(max_abs(&w.constraint));
-            if residual <= s.tolerance {
-                converged = true;
-                break;
-            }
-            // A factorization that fails, or a direction the line search refuses, is retried
-            // with the inertia scaled up, M/h^2 -> (1 + gamma) M/h^2 with gamma = 1, 10,
-            // 100, ... (a proximal damping: shorter, better conditioned steps), up to
-            // `damping_retries` times.
-            let mut gamma = T::ZERO;
-            let mut retry = 0;
-            let dofs = w.kkt.pattern.dofs;
-            loop {
-                let (outcome, shift) = w
-                    .kkt
-                    .factorize_with_inertia_correction(s.pivot_epsilon, s.regularization);
-                if shift > report.hessian_shift {
-                    report.hessian_shift = shift;
+            match w.newton_iteration(model, &s, iteration, &mut report)? {
+                Iteration::Converged => {
+                    converged = true;
+                    break;
                 }
-                w.factored = matches!(outcome, FactorOutcome::Factored { .. });
-                let mut solved = false;
-                if let FactorOutcome::Factored { regularized, .. } = outcome {
-                    report.regularized_pivots += regularized;
-                    let refinement = w.kkt.solve_refined(
-                        &mut w.solution,
-                        &w.rhs,
-                        s.refinement_steps,
-                        s.refinement_tolerance,
-                    );
-                    report.iterations += 1;
-                    report.refinement_steps += refinement.steps;
-                    solved = refinement.relative_residual.is_finite()
-                        && max_abs(&w.solution).is_finite();
-                    if solved && refinement.relative_residual > report.linear_residual {
-                        report.linear_residual = refinement.relative_residual;
-                    }
-                }
-                let failed = if solved {
-                    if !s.line_search {
-                        w.set_trial(T::ONE);
-                        report.constraint_residual = None;
-                        break;
-                    }
-                    let search = w.line_search(
-                        model,
-                        h,
-                        e.energy,
-                        s.max_halvings,
-                        s.second_order_correction,
-                        s.merit_slack,
-                    )?;
-                    report.second_order_corrections += u32::from(search.second_order);
-                    report.merit_before = Some(search.before);
-                    report.merit_after = search.after;
-                    report.halvings += search.halvings;
-                    if search.after.is_some() {
-                        report.constraint_residual = Some(max_abs(&w.constraint));
-                        break;
-                    }
-                    StepStatus::LineSearchFailed
-                } else {
-                    StepStatus::NumericalFailure
-                };
-                if retry == s.damping_retries {
-                    report.status = failed;
-                    return Ok(report);
-                }
-                retry += 1;
-                report.damping_retries = retry;
-                gamma = w.damp(gamma, h);
+                Iteration::Advanced => {}
+                Iteration::Failed => return Ok(report),
             }
-            core::mem::swap(&mut w.x, &mut w.trial);
-            let (_, lambda) = w.solution.split_at(dofs);
-            w.lambda.copy_from_slice(lambda);
-            report.residual = None;
         }
         if !converged && s.check_final_residual {
-            let e = w.evaluate(model, h, false, Derivatives::First)?;
-            if !e.finite {
-                report.status = StepStatus::NumericalFailure;
+            let Some(final_converged) = w.final_residual(model, &s, &mut report)? else {
                 return Ok(report);
-            }
-            w.fill_rhs(h);
-            let residual = w.residual(h);
-            report.residual = Some(residual);
-            report.constraint_residual = Some(max_abs(&w.constraint));
-            converged = residual <= s.tolerance;
+            };
+            converged = final_converged;
         }
         report.status = if converged {
             StepStatus::Converged
@@ -336,6 +259,180 @@ impl<T: Real> Solver<T> {
         };
         w.commit(state, h);
         Ok(report)
+    }
+}
+
+/// How one Newton iteration of [`Solver::step`] ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Iteration {
+    /// The residual at the iterate was within the tolerance; nothing was solved.
+    Converged,
+    /// A step was solved and accepted: the iterate and the multipliers moved.
+    Advanced,
+    /// The step failed; the report's status says how, and the state must stay as it was.
+    Failed,
+}
+
+impl<T: Real> Workspace<T> {
+    /// One Newton iteration of [`Solver::step`]: evaluates the model at the iterate, checks
+    /// the eq. 3 residual, solves for a step (with damped retries), and accepts it.
+    fn newton_iteration<M: Model<T>>(
+        &mut self,
+        model: &M,
+        s: &Settings<T>,
+        iteration: u32,
+        report: &mut StepReport<T>,
+    ) -> Result<Iteration, SolverError> {
+        let h = s.time_step;
+        let e = self.evaluate(model, h, false, Derivatives::Second)?;
+        if !e.finite {
+            report.status = if iteration == 0 {
+                StepStatus::NonFiniteInput
+            } else {
+                StepStatus::NumericalFailure
+            };
+            return Ok(Iteration::Failed);
+        }
+        self.fill_rhs(h);
+        let residual = self.residual(h);
+        report.residual = Some(residual);
+        report.constraint_residual = Some(max_abs(&self.constraint));
+        if residual <= s.tolerance {
+            return Ok(Iteration::Converged);
+        }
+        if let Some(failed) = self.solve_with_damping(model, s, e.energy, report)? {
+            report.status = failed;
+            return Ok(Iteration::Failed);
+        }
+        self.accept();
+        report.residual = None;
+        Ok(Iteration::Advanced)
+    }
+
+    /// Factors, solves and (with [`Settings::line_search`]) searches along the step until a
+    /// trial point is accepted into `trial`; `None` then. A factorization that fails, or a
+    /// direction the line search refuses, is retried with the inertia scaled up,
+    /// $M/h^2 \to (1 + \gamma) M/h^2$ with $\gamma = 1, 10, 100, \dots$ (a proximal
+    /// damping: shorter, better conditioned steps), up to `damping_retries` times; after
+    /// the last, the status of the failure is returned.
+    fn solve_with_damping<M: Model<T>>(
+        &mut self,
+        model: &M,
+        s: &Settings<T>,
+        energy: T,
+        report: &mut StepReport<T>,
+    ) -> Result<Option<StepStatus>, SolverError> {
+        let mut gamma = T::ZERO;
+        let mut retry = 0;
+        loop {
+            let failed = if self.factor_and_solve(s, report) {
+                if !s.line_search {
+                    self.set_trial(T::ONE);
+                    report.constraint_residual = None;
+                    return Ok(None);
+                }
+                if self.search(model, s, energy, report)? {
+                    return Ok(None);
+                }
+                StepStatus::LineSearchFailed
+            } else {
+                StepStatus::NumericalFailure
+            };
+            if retry == s.damping_retries {
+                return Ok(Some(failed));
+            }
+            retry += 1;
+            report.damping_retries = retry;
+            gamma = self.damp(gamma, s.time_step);
+        }
+    }
+
+    /// Factorizes the assembled KKT system (with inertia correction) and solves it with
+    /// refinement into `solution`; `true` when the factorization succeeded and the solution
+    /// is finite.
+    fn factor_and_solve(&mut self, s: &Settings<T>, report: &mut StepReport<T>) -> bool {
+        let (outcome, shift) = self
+            .kkt
+            .factorize_with_inertia_correction(s.pivot_epsilon, s.regularization);
+        if shift > report.hessian_shift {
+            report.hessian_shift = shift;
+        }
+        self.factored = matches!(outcome, FactorOutcome::Factored { .. });
+        let FactorOutcome::Factored { regularized, .. } = outcome else {
+            return false;
+        };
+        report.regularized_pivots += regularized;
+        let refinement = self.kkt.solve_refined(
+            &mut self.solution,
+            &self.rhs,
+            s.refinement_steps,
+            s.refinement_tolerance,
+        );
+        report.iterations += 1;
+        report.refinement_steps += refinement.steps;
+        let solved =
+            refinement.relative_residual.is_finite() && max_abs(&self.solution).is_finite();
+        if solved && refinement.relative_residual > report.linear_residual {
+            report.linear_residual = refinement.relative_residual;
+        }
+        solved
+    }
+
+    /// Runs the line search along the solved step and records it; `true` when it accepted a
+    /// point (left in `trial`, its $C$ in `constraint`).
+    fn search<M: Model<T>>(
+        &mut self,
+        model: &M,
+        s: &Settings<T>,
+        energy: T,
+        report: &mut StepReport<T>,
+    ) -> Result<bool, SolverError> {
+        let search = self.line_search(
+            model,
+            s.time_step,
+            energy,
+            s.max_halvings,
+            s.second_order_correction,
+            s.merit_slack,
+        )?;
+        report.second_order_corrections += u32::from(search.second_order);
+        report.merit_before = Some(search.before);
+        report.merit_after = search.after;
+        report.halvings += search.halvings;
+        if search.after.is_some() {
+            report.constraint_residual = Some(max_abs(&self.constraint));
+            return Ok(true);
+        }
+        Ok(false)
+    }
+
+    /// Makes the accepted trial point the iterate and takes its multipliers $\lambda^+$.
+    fn accept(&mut self) {
+        core::mem::swap(&mut self.x, &mut self.trial);
+        let (_, lambda) = self.solution.split_at(self.kkt.pattern.dofs);
+        self.lambda.copy_from_slice(lambda);
+    }
+
+    /// The optional residual check after the last Newton iteration: evaluates the first
+    /// derivatives at the final iterate and records its residual. `None` (status set) when
+    /// the evaluation is non-finite, else whether the residual is within the tolerance.
+    fn final_residual<M: Model<T>>(
+        &mut self,
+        model: &M,
+        s: &Settings<T>,
+        report: &mut StepReport<T>,
+    ) -> Result<Option<bool>, SolverError> {
+        let h = s.time_step;
+        let e = self.evaluate(model, h, false, Derivatives::First)?;
+        if !e.finite {
+            report.status = StepStatus::NumericalFailure;
+            return Ok(None);
+        }
+        self.fill_rhs(h);
+        let residual = self.residual(h);
+        report.residual = Some(residual);
+        report.constraint_residual = Some(max_abs(&self.constraint));
+        Ok(Some(residual <= s.tolerance))
     }
 }
 
@@ -413,53 +510,9 @@ impl<T: Real> Solver<T> {
             return Ok(out);
         }
         out.before = residual;
-        let dofs = w.kkt.pattern.dofs;
         let extra = (pin_weight - T::ONE) / (h * h);
         while out.steps < max_steps && residual > tolerance {
-            // J(x) and the M/h^2 diagonal; the Hessian blocks stay zero.
-            let e = w.evaluate(model, h, false, Derivatives::First)?;
-            if !e.finite {
-                break;
-            }
-            for (d, &c) in w.kkt.pattern.coordinate_of.iter().enumerate() {
-                if pinned[c as usize / 3] {
-                    w.kkt.values[w.kkt.pattern.diagonal_slot(d)] += w.mass[d] * extra;
-                }
-            }
-            // No inertia correction: the primal block is the diagonal W, positive by
-            // construction, so a regularized primal pivot here is rounding in the
-            // constraint rows' Schur complement, not an indefinite Hessian, and shifting W
-            // would only refactorize up to `MAX_SHIFTS` more times (measured in f32 on the
-            // page turn: the held frames took 2.5 times as long, same result).
-            let outcome = w.kkt.factorize(s.pivot_epsilon, s.regularization);
-            if !matches!(outcome, FactorOutcome::Factored { .. }) {
-                break;
-            }
-            w.rhs[..dofs].iter_mut().for_each(|r| *r = T::ZERO);
-            for (r, &c) in w.rhs[dofs..].iter_mut().zip(&w.constraint) {
-                *r = -c;
-            }
-            w.kkt.solve_refined(
-                &mut w.solution,
-                &w.rhs,
-                s.refinement_steps,
-                s.refinement_tolerance,
-            );
-            // Backtrack while max|C| does not fall (on nearly flat DOG stars the remedied
-            // Jacobian is not the exact one, and a full step can overshoot).
-            let mut alpha = T::ONE;
-            let mut next = None;
-            for _ in 0..PROJECTION_HALVINGS {
-                w.set_trial(alpha);
-                let e = w.evaluate(model, h, true, Derivatives::None)?;
-                let c = max_abs(&w.constraint);
-                if e.finite && c < residual {
-                    next = Some(c);
-                    break;
-                }
-                alpha *= T::HALF;
-            }
-            let Some(next) = next else {
+            let Some(next) = w.project_once(model, &s, pinned, extra, residual)? else {
                 break;
             };
             core::mem::swap(&mut w.x, &mut w.trial);
@@ -476,6 +529,68 @@ impl<T: Real> Solver<T> {
     }
 }
 
+impl<T: Real> Workspace<T> {
+    /// One iteration of [`Solver::project_constraints`] from the iterate, whose
+    /// $\lVert C\rVert_\infty$ is `residual`: assembles $J(x)$ and $W$ (the mass diagonal
+    /// over $h^2$, plus `extra` times the mass on `pinned` nodes), factorizes, solves, and
+    /// halves the step until $\lVert C\rVert_\infty$ falls. Returns the new
+    /// $\lVert C\rVert_\infty$ with the point in `trial`, or `None` when the iteration
+    /// cannot lower it.
+    fn project_once<M: Model<T>>(
+        &mut self,
+        model: &M,
+        s: &Settings<T>,
+        pinned: &[bool],
+        extra: T,
+        residual: T,
+    ) -> Result<Option<T>, SolverError> {
+        let h = s.time_step;
+        let dofs = self.kkt.pattern.dofs;
+        // J(x) and the M/h^2 diagonal; the Hessian blocks stay zero.
+        let e = self.evaluate(model, h, false, Derivatives::First)?;
+        if !e.finite {
+            return Ok(None);
+        }
+        for (d, &c) in self.kkt.pattern.coordinate_of.iter().enumerate() {
+            if pinned[c as usize / 3] {
+                self.kkt.values[self.kkt.pattern.diagonal_slot(d)] += self.mass[d] * extra;
+            }
+        }
+        // No inertia correction: the primal block is the diagonal W, positive by
+        // construction, so a regularized primal pivot here is rounding in the constraint
+        // rows' Schur complement, not an indefinite Hessian, and shifting W would only
+        // refactorize up to `MAX_SHIFTS` more times (measured in f32 on the page turn: the
+        // held frames took 2.5 times as long, same result).
+        let outcome = self.kkt.factorize(s.pivot_epsilon, s.regularization);
+        if !matches!(outcome, FactorOutcome::Factored { .. }) {
+            return Ok(None);
+        }
+        self.rhs[..dofs].iter_mut().for_each(|r| *r = T::ZERO);
+        for (r, &c) in self.rhs[dofs..].iter_mut().zip(&self.constraint) {
+            *r = -c;
+        }
+        self.kkt.solve_refined(
+            &mut self.solution,
+            &self.rhs,
+            s.refinement_steps,
+            s.refinement_tolerance,
+        );
+        // Backtrack while max|C| does not fall (on nearly flat DOG stars the remedied
+        // Jacobian is not the exact one, and a full step can overshoot).
+        let mut alpha = T::ONE;
+        for _ in 0..PROJECTION_HALVINGS {
+            self.set_trial(alpha);
+            let e = self.evaluate(model, h, true, Derivatives::None)?;
+            let c = max_abs(&self.constraint);
+            if e.finite && c < residual {
+                return Ok(Some(c));
+            }
+            alpha *= T::HALF;
+        }
+        Ok(None)
+    }
+}
+
 /// Outcome of one backtracking line search.
 #[derive(Clone, Copy, Debug)]
 struct LineSearch<T> {
@@ -485,6 +600,62 @@ struct LineSearch<T> {
     halvings: u32,
     /// A second-order correction was tried.
     second_order: bool,
+}
+
+/// The line search's acceptance test (module docs): the merit $\psi = E + \mu\lVert C\rVert_2$
+/// at the iterate and its thresholds.
+#[derive(Clone, Copy, Debug)]
+struct Merit<T> {
+    /// $\mu = \max(1.1\lVert\lambda^+\rVert_2, 0.05)$.
+    mu: T,
+    /// $\lVert C\rVert_2$ at the iterate.
+    theta0: T,
+    /// $\psi$ at the iterate.
+    before: T,
+    /// $\psi$ and $E$ at the iterate, raised by the rounding noise.
+    ceiling: T,
+    energy_ceiling: T,
+    /// [`Settings::merit_slack`].
+    slack: T,
+}
+
+impl<T: Real> Merit<T> {
+    /// The test at an iterate with energy `energy`, constraint values `constraint` and new
+    /// multipliers `lambda`.
+    fn new(energy: T, lambda: &[T], constraint: &[T], slack: T) -> Self {
+        let mu = T::from_f64(1.1) * norm2(lambda);
+        let mu = if mu > T::from_f64(0.05) {
+            mu
+        } else {
+            T::from_f64(0.05)
+        };
+        let theta0 = norm2(constraint);
+        let before = energy + mu * theta0;
+        // Changes below the rounding noise count as no increase, so that a step at
+        // convergence is not refused for noise.
+        let noise = |v: T| v + T::from_f64(16.0) * T::EPSILON * if v < T::ZERO { -v } else { v };
+        Self {
+            mu,
+            theta0,
+            before,
+            ceiling: noise(before),
+            energy_ceiling: noise(energy),
+            slack,
+        }
+    }
+
+    /// The merit of a trial point with energy `e` and $\lVert C\rVert_2 =$ `theta` if it is
+    /// accepted: the exact-penalty test, or (with a slack) the filter test: a violation
+    /// within the slack is allowed if the energy does not rise or the violation falls by a
+    /// tenth.
+    fn accept(&self, e: T, theta: T) -> Option<T> {
+        let merit = e + self.mu * theta;
+        let penalty = merit <= self.ceiling;
+        let filter = self.slack > T::ZERO
+            && theta <= self.slack
+            && (e <= self.energy_ceiling || theta <= T::from_f64(0.9) * self.theta0);
+        (merit.is_finite() && (penalty || filter)).then_some(merit)
+    }
 }
 
 /// `x[node] += alpha * v[d]` along the axis of every free coordinate `d`.
@@ -634,80 +805,68 @@ impl<T: Real> Workspace<T> {
         soc: bool,
         slack: T,
     ) -> Result<LineSearch<T>, SolverError> {
-        let dofs = self.kkt.pattern.dofs;
-        let mu = T::from_f64(1.1) * norm2(&self.solution[dofs..]);
-        let mu = if mu > T::from_f64(0.05) {
-            mu
-        } else {
-            T::from_f64(0.05)
-        };
-        let theta0 = norm2(&self.constraint);
-        let before = energy + mu * theta0;
-        // Changes below the rounding noise count as no increase, so that a step at
-        // convergence is not refused for noise.
-        let noise = |v: T| v + T::from_f64(16.0) * T::EPSILON * if v < T::ZERO { -v } else { v };
-        let (ceiling, energy_ceiling) = (noise(before), noise(energy));
-        // The exact-penalty test, or (with a slack) the filter test: a violation within the
-        // slack is allowed if the energy does not rise or the violation falls by a tenth.
-        let accept = |e: T, theta: T| {
-            let merit = e + mu * theta;
-            let penalty = merit <= ceiling;
-            let filter = slack > T::ZERO
-                && theta <= slack
-                && (e <= energy_ceiling || theta <= T::from_f64(0.9) * theta0);
-            (merit.is_finite() && (penalty || filter)).then_some(merit)
-        };
+        let merit = Merit::new(
+            energy,
+            &self.solution[self.kkt.pattern.dofs..],
+            &self.constraint,
+            slack,
+        );
         let mut alpha = T::ONE;
         let mut second_order = false;
         for halvings in 0..=max_halvings {
             self.set_trial(alpha);
             let t = self.evaluate(model, h, true, Derivatives::None)?;
-            if let Some(merit) = accept(t.energy, norm2(&self.constraint)).filter(|_| t.finite) {
-                return Ok(LineSearch {
-                    before,
-                    after: Some(merit),
-                    halvings,
-                    second_order,
-                });
+            let found = |after, second_order| LineSearch {
+                before: merit.before,
+                after: Some(after),
+                halvings,
+                second_order,
+            };
+            if let Some(after) = merit
+                .accept(t.energy, norm2(&self.constraint))
+                .filter(|_| t.finite)
+            {
+                return Ok(found(after, second_order));
             }
             if halvings == 0 && soc && t.finite {
-                // Second-order correction (Nocedal & Wright, Alg. 18.3): the full step is
-                // often refused only because C grew to second order along it (the Maratos
-                // effect); one more solve with the same factor,
-                // [A J^T; J 0] [d; mu] = [0; -C(x + dx)], pulls the trial back towards C = 0.
-                let dofs = self.kkt.pattern.dofs;
-                self.rhs[..dofs].iter_mut().for_each(|r| *r = T::ZERO);
-                for (r, &c) in self.rhs[dofs..].iter_mut().zip(&self.constraint) {
-                    *r = -c;
-                }
-                self.kkt
-                    .solve_refined(&mut self.product, &self.rhs, 0, T::ZERO);
-                add_to(
-                    &mut self.trial,
-                    &self.kkt.pattern.coordinate_of,
-                    &self.product,
-                    T::ONE,
-                );
+                self.second_order_correction();
                 let t = self.evaluate(model, h, true, Derivatives::None)?;
                 second_order = true;
-                if let Some(merit) = accept(t.energy, norm2(&self.constraint)).filter(|_| t.finite)
+                if let Some(after) = merit
+                    .accept(t.energy, norm2(&self.constraint))
+                    .filter(|_| t.finite)
                 {
-                    return Ok(LineSearch {
-                        before,
-                        after: Some(merit),
-                        halvings,
-                        second_order,
-                    });
+                    return Ok(found(after, second_order));
                 }
             }
             alpha *= T::HALF;
         }
         Ok(LineSearch {
-            before,
+            before: merit.before,
             after: None,
             halvings: max_halvings,
             second_order,
         })
+    }
+
+    /// Second-order correction (Nocedal & Wright, Alg. 18.3): the full step is often refused
+    /// only because $C$ grew to second order along it (the Maratos effect); one more solve
+    /// with the same factor, $[A\ J^\top; J\ 0]\,[d; \mu] = [0; -C(x + \Delta x)]$, pulls
+    /// the trial (whose $C$ is in `constraint`) back towards $C = 0$.
+    fn second_order_correction(&mut self) {
+        let dofs = self.kkt.pattern.dofs;
+        self.rhs[..dofs].iter_mut().for_each(|r| *r = T::ZERO);
+        for (r, &c) in self.rhs[dofs..].iter_mut().zip(&self.constraint) {
+            *r = -c;
+        }
+        self.kkt
+            .solve_refined(&mut self.product, &self.rhs, 0, T::ZERO);
+        add_to(
+            &mut self.trial,
+            &self.kkt.pattern.coordinate_of,
+            &self.product,
+            T::ONE,
+        );
     }
 
     /// Raises the inertia damping from `gamma` to the next of $1, 10, 100, \dots$: the
