@@ -71,7 +71,7 @@ impl DogKkt {
     pub fn signs(&self) -> Vec<i8> {
         let p = self.kkt.pattern();
         (0..p.order())
-            .map(|k| if k < p.dofs { 1 } else { -1 })
+            .map(|k| if k < p.dofs() { 1 } else { -1 })
             .collect()
     }
 
@@ -80,7 +80,7 @@ impl DogKkt {
     pub fn faer_matrix(&self) -> SparseColMatRef<'_, u32, f64> {
         let p = self.kkt.pattern();
         let n = p.order();
-        let symbolic = SymbolicSparseColMatRef::new_checked(n, n, &p.col_ptr, None, &p.row_idx);
+        let symbolic = SymbolicSparseColMatRef::new_checked(n, n, p.col_ptr(), None, p.row_idx());
         SparseColMatRef::new(symbolic, self.kkt.values())
     }
 
@@ -91,8 +91,8 @@ impl DogKkt {
         let n = p.order();
         let mut m = Mat::<f64>::zeros(n, n);
         for c in 0..n {
-            for s in p.col_ptr[c] as usize..p.col_ptr[c + 1] as usize {
-                let r = p.row_idx[s] as usize;
+            for s in p.col_ptr()[c] as usize..p.col_ptr()[c + 1] as usize {
+                let r = p.row_idx()[s] as usize;
                 m[(r, c)] = self.kkt.values()[s];
                 m[(c, r)] = self.kkt.values()[s];
             }

@@ -38,7 +38,7 @@ fn nearest(nodes: &[usize], distance: impl Fn(usize) -> f64) -> Option<usize> {
 fn pattern_size<T: Real>(solver: &Solver<T>) -> (usize, usize) {
     solver
         .kkt()
-        .map_or((0, 0), |k| (k.pattern().dofs, k.pattern().rows))
+        .map_or((0, 0), |k| (k.pattern().dofs(), k.pattern().rows()))
 }
 
 /// Pages in each part of the book.

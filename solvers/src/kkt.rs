@@ -25,11 +25,11 @@ pub struct Refinement<T> {
 
 /// A KKT matrix with a fixed pattern, its symbolic analysis and a numeric factor.
 ///
-/// Owns the pattern, the symbolic analysis, the factor and its values (sizes in their docs),
-/// the upper-triangle values (`nnz` of the pattern) and five work vectors of the matrix
-/// order $n$; [`Kkt::set_equilibration`] adds the scaling's four buffers. Everything is
-/// allocated at setup ([`Kkt::new`], [`Kkt::set_equilibration`]); factorizing and solving
-/// allocate nothing. The factor is made for this very analysis, so the two always pair.
+/// Owns the pattern, the symbolic analysis, the factor (sizes in their docs), the
+/// upper-triangle values (`nnz` of the pattern) and five work vectors of the matrix order
+/// $n$; [`Kkt::set_equilibration`] adds the scaling's four buffers (three of order $n$, one
+/// of `nnz`). Everything is allocated at setup ([`Kkt::new`], [`Kkt::set_equilibration`]);
+/// factorizing and solving allocate nothing. The factor is made for this very analysis, so the two always pair.
 #[derive(Clone, Debug)]
 pub struct Kkt<T> {
     /// The pattern and scatter maps.

@@ -42,40 +42,99 @@ pub(crate) struct Family {
 }
 
 /// The upper-triangle KKT pattern of a model and every term's scatter map.
+///
+/// Owns the coordinate numbering (`3 * nodes` and `dofs` entries), the compressed upper
+/// columns (`order + 1` pointers, `nnz` rows) and the term maps (`3 N` local dofs per term,
+/// `9 N^2` Hessian slots per term with a Hessian, `3 N R` Jacobian slots per term), all
+/// allocated by [`KktPattern::build`] at setup. Fields are read through the accessors.
 #[derive(Clone, Debug, Default)]
 pub struct KktPattern {
     /// Number of free coordinates (primal unknowns).
-    pub dofs: usize,
+    pub(crate) dofs: usize,
     /// Number of constraint rows (dual unknowns).
-    pub rows: usize,
+    pub(crate) rows: usize,
     /// `dof_of[3 * node + axis]`: the free coordinate's index, or [`NONE`] when eliminated.
-    pub dof_of: Vec<u32>,
+    pub(crate) dof_of: Vec<u32>,
     /// `coordinate_of[dof] = 3 * node + axis`.
-    pub coordinate_of: Vec<u32>,
+    pub(crate) coordinate_of: Vec<u32>,
     /// Column pointers, `dofs + rows + 1` entries.
-    pub col_ptr: Vec<u32>,
+    pub(crate) col_ptr: Vec<u32>,
     /// Row index of each stored entry; rows are sorted within a column and the last entry of
     /// every column is its diagonal.
-    pub row_idx: Vec<u32>,
+    pub(crate) row_idx: Vec<u32>,
     pub(crate) families: Vec<Family>,
     pub(crate) local_dofs: Vec<u32>,
     pub(crate) hessian_slots: Vec<u32>,
     pub(crate) jacobian_slots: Vec<u32>,
     /// Whether the constraint Hessian blocks are part of the pattern.
-    pub with_constraint_hessian: bool,
+    pub(crate) with_constraint_hessian: bool,
 }
 
 impl KktPattern {
+    /// Number of free coordinates (primal unknowns): the first `dofs()` rows and columns.
+    #[inline]
+    #[must_use]
+    pub fn dofs(&self) -> usize {
+        self.dofs
+    }
+
+    /// Number of constraint rows (dual unknowns): the last `rows()` rows and columns.
+    #[inline]
+    #[must_use]
+    pub fn rows(&self) -> usize {
+        self.rows
+    }
+
     /// Order of the KKT matrix, `dofs + rows`.
+    #[inline]
     #[must_use]
     pub fn order(&self) -> usize {
         self.dofs + self.rows
     }
 
     /// Number of stored (upper-triangle) entries.
+    #[inline]
     #[must_use]
     pub fn nnz(&self) -> usize {
         self.row_idx.len()
+    }
+
+    /// Per model coordinate `3 * node + axis` (`3 * nodes` entries): its free coordinate's
+    /// index, or [`NONE`] when the model eliminates it.
+    #[inline]
+    #[must_use]
+    pub fn dof_of(&self) -> &[u32] {
+        &self.dof_of
+    }
+
+    /// Per free coordinate (`dofs` entries): its model coordinate `3 * node + axis`.
+    #[inline]
+    #[must_use]
+    pub fn coordinate_of(&self) -> &[u32] {
+        &self.coordinate_of
+    }
+
+    /// Column pointers of the upper triangle, `order + 1` entries: column `c`'s rows and
+    /// value slots are `col_ptr()[c]..col_ptr()[c + 1]`.
+    #[inline]
+    #[must_use]
+    pub fn col_ptr(&self) -> &[u32] {
+        &self.col_ptr
+    }
+
+    /// Row index of each stored entry (`nnz` entries): sorted within a column, the last
+    /// entry of every column its diagonal.
+    #[inline]
+    #[must_use]
+    pub fn row_idx(&self) -> &[u32] {
+        &self.row_idx
+    }
+
+    /// Whether the constraint Hessian blocks are part of the pattern.
+    #[inline]
+    #[must_use]
+    pub fn with_constraint_hessian(&self) -> bool {
+        self.with_constraint_hessian
     }
 
     /// Slot of diagonal entry `k` (the last entry of column `k`).

@@ -19,7 +19,7 @@
 
 use alloc::vec;
 use alloc::vec::Vec;
-use folio_kernels::{Real, Vec3Ops, math};
+use folio_kernels::{Real, Vec3Ops};
 
 use crate::assembly::{Assemble, Derivatives};
 use crate::error::SolverError;
@@ -30,6 +30,11 @@ use crate::ordering::Ordering;
 use crate::pattern::KktPattern;
 use crate::report::{StepReport, StepStatus};
 use crate::settings::Settings;
+
+mod line_search;
+mod projection;
+
+pub use projection::Correction;
 
 /// Node positions and velocities (page units, page units per second).
 #[derive(Clone, Debug, PartialEq)]
@@ -378,34 +383,6 @@ impl<T: Real> Workspace<T> {
         solved
     }
 
-    /// Runs the line search along the solved step and records it; `true` when it accepted a
-    /// point (left in `trial`, its $C$ in `constraint`).
-    fn search<M: Model<T>>(
-        &mut self,
-        model: &M,
-        s: &Settings<T>,
-        energy: T,
-        report: &mut StepReport<T>,
-    ) -> Result<bool, SolverError> {
-        let search = self.line_search(
-            model,
-            s.time_step,
-            energy,
-            s.max_halvings,
-            s.second_order_correction,
-            s.merit_slack,
-        )?;
-        report.second_order_corrections += u32::from(search.second_order);
-        report.merit_before = Some(search.before);
-        report.merit_after = search.after;
-        report.halvings += search.halvings;
-        if search.after.is_some() {
-            report.constraint_residual = Some(max_abs(&self.constraint));
-            return Ok(true);
-        }
-        Ok(false)
-    }
-
     /// Makes the accepted trial point the iterate and takes its multipliers $\lambda^+$.
     fn accept(&mut self) {
         core::mem::swap(&mut self.x, &mut self.trial);
@@ -436,243 +413,12 @@ impl<T: Real> Workspace<T> {
     }
 }
 
-/// Step halvings a projection iteration may try before it gives up.
-const PROJECTION_HALVINGS: u32 = 6;
-
-/// What [`Solver::project_constraints`] did.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Correction<T> {
-    /// Projection iterations accepted.
-    pub steps: u32,
-    /// $\lVert C(x)\rVert_\infty$ before the first iteration.
-    pub before: T,
-    /// $\lVert C(x)\rVert_\infty$ after the last accepted one.
-    pub after: T,
-}
-
-impl<T: Real> Solver<T> {
-    /// Pulls `state` back onto the constraints after a step and anything done to it since
-    /// (collision projection): the mass-weighted closest point on $C(x) = 0$, found by
-    /// Gauss-Newton iterations with the Jacobian re-evaluated at each iterate,
-    /// $$\begin{bmatrix} W & J(x)^\top \\ J(x) & 0\end{bmatrix}\begin{bmatrix}\delta \\ \mu\end{bmatrix}
-    ///   = \begin{bmatrix} 0 \\ -C(x)\end{bmatrix},\qquad x \mathrel{+}= \delta,\ v \mathrel{+}= \delta / h,$$
-    /// with $W = M/h^2$ except on the nodes flagged in `pinned`, whose weight is multiplied by
-    /// `pin_weight` so that they barely move (contact points stay on the surface that pushed
-    /// them). This is the fast projection of Goldenthal et al. 2007; each iteration costs one
-    /// numeric factorization of the analysed pattern and no allocation. The one-Newton-step
-    /// default leaves $C = O(\lVert\Delta x\rVert^2)$ behind, and a collision push of depth
-    /// $d$ leaves $C = O(d/\ell)$ (module docs); this removes both. Iterates until
-    /// $\lVert C\rVert_\infty \le$ `tolerance` or `max_steps` iterations; each iteration
-    /// halves its step (up to 6 times) until $\lVert C\rVert_\infty$ falls, and one that
-    /// cannot lower it ends the projection. Does
-    /// nothing (zero steps) before the first successful step of the topology.
-    ///
-    /// # Errors
-    /// As [`Solver::step`] for a model that changed or a state of the wrong length;
-    /// [`SolverError::StateLength`] also when `pinned` is not one flag per node.
-    pub fn project_constraints<M: Model<T>>(
-        &mut self,
-        model: &M,
-        state: &mut State<T>,
-        pinned: &[bool],
-        pin_weight: T,
-        tolerance: T,
-        max_steps: u32,
-    ) -> Result<Correction<T>, SolverError> {
-        let mut out = Correction {
-            steps: 0,
-            before: T::ZERO,
-            after: T::ZERO,
-        };
-        let s = self.settings;
-        let h = s.time_step;
-        let Some(w) = self.work.as_mut() else {
-            return Ok(out);
-        };
-        if w.version != model.topology_version() {
-            return Err(SolverError::ModelChanged);
-        }
-        let nodes = w.x.len();
-        if state.x.len() != nodes || state.v.len() != nodes || pinned.len() != nodes {
-            return Err(SolverError::StateLength {
-                expected: nodes,
-                positions: state.x.len(),
-                velocities: state.v.len().min(pinned.len()),
-            });
-        }
-        if !w.factored {
-            return Ok(out);
-        }
-        w.x.copy_from_slice(&state.x);
-        let e = w.evaluate(model, h, false, Derivatives::None)?;
-        let mut residual = max_abs(&w.constraint);
-        if !(e.finite && residual.is_finite()) {
-            return Ok(out);
-        }
-        out.before = residual;
-        let extra = (pin_weight - T::ONE) / (h * h);
-        while out.steps < max_steps && residual > tolerance {
-            let Some(next) = w.project_once(model, &s, pinned, extra, residual)? else {
-                break;
-            };
-            core::mem::swap(&mut w.x, &mut w.trial);
-            residual = next;
-            out.steps += 1;
-        }
-        out.after = residual;
-        let inv_h = T::ONE / h;
-        for ((x, v), &new) in state.x.iter_mut().zip(state.v.iter_mut()).zip(&w.x) {
-            *v += (new - *x) * inv_h;
-            *x = new;
-        }
-        Ok(out)
-    }
-}
-
-impl<T: Real> Workspace<T> {
-    /// One iteration of [`Solver::project_constraints`] from the iterate, whose
-    /// $\lVert C\rVert_\infty$ is `residual`: assembles $J(x)$ and $W$ (the mass diagonal
-    /// over $h^2$, plus `extra` times the mass on `pinned` nodes), factorizes, solves, and
-    /// halves the step until $\lVert C\rVert_\infty$ falls. Returns the new
-    /// $\lVert C\rVert_\infty$ with the point in `trial`, or `None` when the iteration
-    /// cannot lower it.
-    fn project_once<M: Model<T>>(
-        &mut self,
-        model: &M,
-        s: &Settings<T>,
-        pinned: &[bool],
-        extra: T,
-        residual: T,
-    ) -> Result<Option<T>, SolverError> {
-        let h = s.time_step;
-        let dofs = self.kkt.pattern.dofs;
-        // J(x) and the M/h^2 diagonal; the Hessian blocks stay zero.
-        let e = self.evaluate(model, h, false, Derivatives::First)?;
-        if !e.finite {
-            return Ok(None);
-        }
-        for (d, &c) in self.kkt.pattern.coordinate_of.iter().enumerate() {
-            if pinned[c as usize / 3] {
-                self.kkt.values[self.kkt.pattern.diagonal_slot(d)] += self.mass[d] * extra;
-            }
-        }
-        // No inertia correction: the primal block is the diagonal W, positive by
-        // construction, so a regularized primal pivot here is rounding in the constraint
-        // rows' Schur complement, not an indefinite Hessian, and shifting W would only
-        // refactorize up to `MAX_SHIFTS` more times (measured in f32 on the page turn: the
-        // held frames took 2.5 times as long, same result).
-        let outcome = self.kkt.factorize(s.pivot_epsilon, s.regularization);
-        if !matches!(outcome, FactorOutcome::Factored { .. }) {
-            return Ok(None);
-        }
-        self.rhs[..dofs].iter_mut().for_each(|r| *r = T::ZERO);
-        for (r, &c) in self.rhs[dofs..].iter_mut().zip(&self.constraint) {
-            *r = -c;
-        }
-        self.kkt.solve_refined(
-            &mut self.solution,
-            &self.rhs,
-            s.refinement_steps,
-            s.refinement_tolerance,
-        );
-        // Backtrack while max|C| does not fall (on nearly flat DOG stars the remedied
-        // Jacobian is not the exact one, and a full step can overshoot).
-        let mut alpha = T::ONE;
-        for _ in 0..PROJECTION_HALVINGS {
-            self.set_trial(alpha);
-            let e = self.evaluate(model, h, true, Derivatives::None)?;
-            let c = max_abs(&self.constraint);
-            if e.finite && c < residual {
-                return Ok(Some(c));
-            }
-            alpha *= T::HALF;
-        }
-        Ok(None)
-    }
-}
-
-/// Outcome of one backtracking line search.
-#[derive(Clone, Copy, Debug)]
-struct LineSearch<T> {
-    before: T,
-    /// Merit at the accepted point; `None` when every halving failed.
-    after: Option<T>,
-    halvings: u32,
-    /// A second-order correction was tried.
-    second_order: bool,
-}
-
-/// The line search's acceptance test (module docs): the merit $\psi = E + \mu\lVert C\rVert_2$
-/// at the iterate and its thresholds.
-#[derive(Clone, Copy, Debug)]
-struct Merit<T> {
-    /// $\mu = \max(1.1\lVert\lambda^+\rVert_2, 0.05)$.
-    mu: T,
-    /// $\lVert C\rVert_2$ at the iterate.
-    theta0: T,
-    /// $\psi$ at the iterate.
-    before: T,
-    /// $\psi$ and $E$ at the iterate, raised by the rounding noise.
-    ceiling: T,
-    energy_ceiling: T,
-    /// [`Settings::merit_slack`].
-    slack: T,
-}
-
-impl<T: Real> Merit<T> {
-    /// The test at an iterate with energy `energy`, constraint values `constraint` and new
-    /// multipliers `lambda`.
-    fn new(energy: T, lambda: &[T], constraint: &[T], slack: T) -> Self {
-        let mu = T::from_f64(1.1) * norm2(lambda);
-        let mu = if mu > T::from_f64(0.05) {
-            mu
-        } else {
-            T::from_f64(0.05)
-        };
-        let theta0 = norm2(constraint);
-        let before = energy + mu * theta0;
-        // Changes below the rounding noise count as no increase, so that a step at
-        // convergence is not refused for noise.
-        let noise = |v: T| v + T::from_f64(16.0) * T::EPSILON * if v < T::ZERO { -v } else { v };
-        Self {
-            mu,
-            theta0,
-            before,
-            ceiling: noise(before),
-            energy_ceiling: noise(energy),
-            slack,
-        }
-    }
-
-    /// The merit of a trial point with energy `e` and $\lVert C\rVert_2 =$ `theta` if it is
-    /// accepted: the exact-penalty test, or (with a slack) the filter test: a violation
-    /// within the slack is allowed if the energy does not rise or the violation falls by a
-    /// tenth.
-    fn accept(&self, e: T, theta: T) -> Option<T> {
-        let merit = e + self.mu * theta;
-        let penalty = merit <= self.ceiling;
-        let filter = self.slack > T::ZERO
-            && theta <= self.slack
-            && (e <= self.energy_ceiling || theta <= T::from_f64(0.9) * self.theta0);
-        (merit.is_finite() && (penalty || filter)).then_some(merit)
-    }
-}
-
 /// `x[node] += alpha * v[d]` along the axis of every free coordinate `d`.
 fn add_to<T: Real>(x: &mut [T::Vec3], coordinate_of: &[u32], v: &[T], alpha: T) {
     for (d, &c) in coordinate_of.iter().enumerate() {
         let (node, axis) = (c as usize / 3, c as usize % 3);
         x[node] += T::Vec3::AXES[axis] * (alpha * v[d]);
     }
-}
-
-/// $\lVert v\rVert_2$.
-fn norm2<T: Real>(v: &[T]) -> T {
-    let mut sum = T::ZERO;
-    for &x in v {
-        sum += x * x;
-    }
-    math::sqrt(sum)
 }
 
 impl<T: Real> Workspace<T> {
@@ -790,83 +536,6 @@ impl<T: Real> Workspace<T> {
             }
         }
         worst
-    }
-
-    /// Backtracks from $\alpha = 1$ along the solved direction until the merit
-    /// $\psi = E + \mu\lVert C\rVert_2$ does not increase (module docs); the accepted point is
-    /// left in `trial` and its $C$ in `constraint`. `energy` is $E$ at the iterate, whose $C$
-    /// is in `constraint` on entry.
-    fn line_search<M: Model<T>>(
-        &mut self,
-        model: &M,
-        h: T,
-        energy: T,
-        max_halvings: u32,
-        soc: bool,
-        slack: T,
-    ) -> Result<LineSearch<T>, SolverError> {
-        let merit = Merit::new(
-            energy,
-            &self.solution[self.kkt.pattern.dofs..],
-            &self.constraint,
-            slack,
-        );
-        let mut alpha = T::ONE;
-        let mut second_order = false;
-        for halvings in 0..=max_halvings {
-            self.set_trial(alpha);
-            let t = self.evaluate(model, h, true, Derivatives::None)?;
-            let found = |after, second_order| LineSearch {
-                before: merit.before,
-                after: Some(after),
-                halvings,
-                second_order,
-            };
-            if let Some(after) = merit
-                .accept(t.energy, norm2(&self.constraint))
-                .filter(|_| t.finite)
-            {
-                return Ok(found(after, second_order));
-            }
-            if halvings == 0 && soc && t.finite {
-                self.second_order_correction();
-                let t = self.evaluate(model, h, true, Derivatives::None)?;
-                second_order = true;
-                if let Some(after) = merit
-                    .accept(t.energy, norm2(&self.constraint))
-                    .filter(|_| t.finite)
-                {
-                    return Ok(found(after, second_order));
-                }
-            }
-            alpha *= T::HALF;
-        }
-        Ok(LineSearch {
-            before: merit.before,
-            after: None,
-            halvings: max_halvings,
-            second_order,
-        })
-    }
-
-    /// Second-order correction (Nocedal & Wright, Alg. 18.3): the full step is often refused
-    /// only because $C$ grew to second order along it (the Maratos effect); one more solve
-    /// with the same factor, $[A\ J^\top; J\ 0]\,[d; \mu] = [0; -C(x + \Delta x)]$, pulls
-    /// the trial (whose $C$ is in `constraint`) back towards $C = 0$.
-    fn second_order_correction(&mut self) {
-        let dofs = self.kkt.pattern.dofs;
-        self.rhs[..dofs].iter_mut().for_each(|r| *r = T::ZERO);
-        for (r, &c) in self.rhs[dofs..].iter_mut().zip(&self.constraint) {
-            *r = -c;
-        }
-        self.kkt
-            .solve_refined(&mut self.product, &self.rhs, 0, T::ZERO);
-        add_to(
-            &mut self.trial,
-            &self.kkt.pattern.coordinate_of,
-            &self.product,
-            T::ONE,
-        );
     }
 
     /// Raises the inertia damping from `gamma` to the next of $1, 10, 100, \dots$: the

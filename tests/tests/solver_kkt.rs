@@ -44,8 +44,8 @@ fn residual_f64<T: Real>(kkt: &Kkt<T>, z: &[T], b: &[T]) -> f64 {
     let p = kkt.pattern();
     let mut r: Vec<f64> = b.iter().map(|v| v.to_f64()).collect();
     for c in 0..p.order() {
-        for s in p.col_ptr[c] as usize..p.col_ptr[c + 1] as usize {
-            let row = p.row_idx[s] as usize;
+        for s in p.col_ptr()[c] as usize..p.col_ptr()[c + 1] as usize {
+            let row = p.row_idx()[s] as usize;
             let v = kkt.values()[s].to_f64();
             r[row] -= v * z[c].to_f64();
             if row != c {
@@ -62,8 +62,8 @@ fn residual_f64<T: Real>(kkt: &Kkt<T>, z: &[T], b: &[T]) -> f64 {
 fn rescale_rows(kkt: &mut Kkt<f32>, rhs: &mut [f32]) {
     let scale = |i: usize| 10f32.powi((i % 7) as i32 - 3);
     for c in 0..kkt.pattern().order() {
-        for s in kkt.pattern().col_ptr[c] as usize..kkt.pattern().col_ptr[c + 1] as usize {
-            let r = kkt.pattern().row_idx[s] as usize;
+        for s in kkt.pattern().col_ptr()[c] as usize..kkt.pattern().col_ptr()[c + 1] as usize {
+            let r = kkt.pattern().row_idx()[s] as usize;
             kkt.values_mut()[s] *= scale(r) * scale(c);
         }
     }
@@ -109,12 +109,12 @@ fn dog_kkt_residual_f64() {
             kkt.pattern().order()
         );
         assert_eq!(
-            kkt.pattern().dofs,
+            kkt.pattern().dofs(),
             3 * 12 * 9 - 3 * 9,
             "three coordinates per free vertex"
         );
         assert_eq!(
-            kkt.pattern().rows,
+            kkt.pattern().rows(),
             3 * 10 * 7 + 2 * (10 + 7),
             "DOG rows of a 12x9 grid"
         );
