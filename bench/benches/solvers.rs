@@ -25,7 +25,7 @@ fn folio(c: &mut Criterion) {
             g.bench_function(
                 BenchmarkId::new(format!("folio symbolic {tag}"), &id),
                 |b| {
-                    b.iter(|| black_box(Symbolic::analyse(&system.kkt.pattern, ordering)));
+                    b.iter(|| black_box(Symbolic::analyse(system.kkt.pattern(), ordering)));
                 },
             );
             let s = system.settings;
@@ -69,8 +69,8 @@ fn folio(c: &mut Criterion) {
                 |b| {
                     b.iter(|| {
                         let mut fresh =
-                            folio_solvers::Kkt::<f64>::new(system.kkt.pattern.clone(), ordering);
-                        fresh.values.copy_from_slice(&system.kkt.values);
+                            folio_solvers::Kkt::<f64>::new(system.kkt.pattern().clone(), ordering);
+                        fresh.values_mut().copy_from_slice(system.kkt.values());
                         fresh.factorize(s.pivot_epsilon, s.regularization);
                         black_box(fresh.solve_refined(
                             &mut z,

@@ -31,6 +31,7 @@ fn main() -> Result<(), Box<dyn core::error::Error>> {
             let regularized = match outcome {
                 FactorOutcome::Factored { regularized, .. } => regularized.to_string(),
                 FactorOutcome::NonFinite { pivot } => format!("NaN@{pivot}"),
+                other => format!("{other:?}"),
             };
             let mut z = vec![0.0; system.rhs.len()];
             let residual = system
@@ -46,10 +47,10 @@ fn main() -> Result<(), Box<dyn core::error::Error>> {
                 "{:<7} {:<16} {:>6} {:>8} {:>9} {:>11.3e} {:>12} {:>10.1e}",
                 format!("{}x{}", quads.0, quads.1),
                 format!("{ordering:?}"),
-                system.kkt.pattern.order(),
-                system.kkt.pattern.nnz(),
-                system.kkt.symbolic.nnz_l(),
-                system.kkt.symbolic.factor_flops(),
+                system.kkt.pattern().order(),
+                system.kkt.pattern().nnz(),
+                system.kkt.symbolic().nnz_l(),
+                system.kkt.symbolic().factor_flops(),
                 regularized,
                 residual
             );
@@ -58,15 +59,15 @@ fn main() -> Result<(), Box<dyn core::error::Error>> {
     if let Some(path) = export {
         let system = DogKkt::new(SIZES[0], Ordering::default());
         let mut text = String::new();
-        write_matrix_market(&mut text, &system.kkt.pattern, &system.kkt.values)?;
+        write_matrix_market(&mut text, system.kkt.pattern(), system.kkt.values())?;
         if let Some(dir) = std::path::Path::new(&path).parent() {
             std::fs::create_dir_all(dir)?;
         }
         std::fs::write(&path, text)?;
         println!(
             "wrote {path}: the 11x8 DOG-sheet KKT, n = {}, {} stored entries",
-            system.kkt.pattern.order(),
-            system.kkt.pattern.nnz()
+            system.kkt.pattern().order(),
+            system.kkt.pattern().nnz()
         );
     }
     Ok(())

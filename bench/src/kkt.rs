@@ -69,32 +69,32 @@ impl DogKkt {
     /// The expected pivot signs in the natural order (+1 primal, -1 constraint row).
     #[must_use]
     pub fn signs(&self) -> Vec<i8> {
-        let p = &self.kkt.pattern;
+        let p = self.kkt.pattern();
         (0..p.order())
-            .map(|k| if k < p.dofs { 1 } else { -1 })
+            .map(|k| if k < p.dofs() { 1 } else { -1 })
             .collect()
     }
 
     /// faer's view of the upper-triangle matrix.
     #[must_use]
     pub fn faer_matrix(&self) -> SparseColMatRef<'_, u32, f64> {
-        let p = &self.kkt.pattern;
+        let p = self.kkt.pattern();
         let n = p.order();
-        let symbolic = SymbolicSparseColMatRef::new_checked(n, n, &p.col_ptr, None, &p.row_idx);
-        SparseColMatRef::new(symbolic, &self.kkt.values)
+        let symbolic = SymbolicSparseColMatRef::new_checked(n, n, p.col_ptr(), None, p.row_idx());
+        SparseColMatRef::new(symbolic, self.kkt.values())
     }
 
     /// The dense symmetric matrix (for the dense LU baseline).
     #[must_use]
     pub fn dense(&self) -> Mat<f64> {
-        let p = &self.kkt.pattern;
+        let p = self.kkt.pattern();
         let n = p.order();
         let mut m = Mat::<f64>::zeros(n, n);
         for c in 0..n {
-            for s in p.col_ptr[c] as usize..p.col_ptr[c + 1] as usize {
-                let r = p.row_idx[s] as usize;
-                m[(r, c)] = self.kkt.values[s];
-                m[(c, r)] = self.kkt.values[s];
+            for s in p.col_ptr()[c] as usize..p.col_ptr()[c + 1] as usize {
+                let r = p.row_idx()[s] as usize;
+                m[(r, c)] = self.kkt.values()[s];
+                m[(c, r)] = self.kkt.values()[s];
             }
         }
         m
@@ -132,7 +132,7 @@ pub fn faer_factor_and_solve(
     z: &mut [f64],
     par: Par,
 ) {
-    let n = system.kkt.pattern.order();
+    let n = system.kkt.pattern().order();
     let scale = system.kkt.primal_scale();
     let regularization = LdltRegularization {
         dynamic_regularization_signs: Some(signs),

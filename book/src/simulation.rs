@@ -31,7 +31,7 @@ pub use crate::grab::{DragOutcome, GrabOutcome};
 fn pattern_size<T: Real>(solver: &Solver<T>) -> (usize, usize) {
     solver
         .kkt()
-        .map_or((0, 0), |k| (k.pattern.dofs, k.pattern.rows))
+        .map_or((0, 0), |k| (k.pattern().dofs(), k.pattern().rows()))
 }
 
 /// Every node's initial position: the layout's midlines and cover ends in the XY plane; the

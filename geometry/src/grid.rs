@@ -152,3 +152,81 @@ impl QuadGrid {
             .collect()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{QuadGrid, Star};
+
+    /// 3 x 2 quads: vertices 0-3 on row `j = 0`, 4-7 on `j = 1`, 8-11 on `j = 2`.
+    fn grid() -> QuadGrid {
+        QuadGrid::new(3, 2).unwrap()
+    }
+
+    #[test]
+    fn index_and_coords_are_inverse() {
+        let g = grid();
+        assert_eq!((g.nx, g.nz, g.len()), (4, 3, 12));
+        assert_eq!(g.index(2, 1), 6);
+        assert_eq!(g.coords(6), (2, 1));
+        for k in 0..g.len() {
+            let (i, j) = g.coords(k);
+            assert!(i < g.nx && j < g.nz);
+            assert_eq!(g.index(i, j), k);
+        }
+        assert_eq!(QuadGrid::new(0, 2), None);
+        assert_eq!(QuadGrid::new(2, 0), None);
+    }
+
+    /// Corners have two neighbours, edge vertices three (counter-clockwise, the missing one
+    /// after the last), inner vertices four in the order x-forward, y-forward, x-back, y-back.
+    #[test]
+    fn stars_at_corners_edges_and_inside() {
+        let g = grid();
+        for (i, j) in [(0, 0), (3, 0), (0, 2), (3, 2)] {
+            assert_eq!(
+                g.star(i, j),
+                Star::Corner(g.index(i, j)),
+                "corner ({i}, {j})"
+            );
+        }
+        assert_eq!(g.star(1, 0), Star::Boundary([1, 2, 5, 0]), "bottom edge");
+        assert_eq!(g.star(3, 1), Star::Boundary([7, 11, 6, 3]), "right edge");
+        assert_eq!(g.star(1, 2), Star::Boundary([9, 8, 5, 10]), "top edge");
+        assert_eq!(g.star(0, 1), Star::Boundary([4, 0, 5, 8]), "left edge");
+        assert_eq!(g.star(1, 1), Star::Inner([5, 6, 9, 4, 1]));
+        assert_eq!(g.star(2, 1), Star::Inner([6, 7, 10, 5, 2]));
+        let stars = g.stars();
+        let count = |f: fn(&Star) -> bool| stars.iter().filter(|s| f(s)).count();
+        assert_eq!(count(|s| matches!(s, Star::Inner(_))), 2);
+        assert_eq!(count(|s| matches!(s, Star::Boundary(_))), 6);
+        assert_eq!(count(|s| matches!(s, Star::Corner(_))), 4);
+        for (k, s) in stars.iter().enumerate() {
+            let (i, j) = g.coords(k);
+            assert_eq!(*s, g.star(i, j));
+            assert_eq!(g.is_border(i, j), !matches!(s, Star::Inner(_)));
+        }
+    }
+
+    #[test]
+    fn edges_join_grid_neighbours() {
+        let g = grid();
+        let edges = g.edges();
+        assert_eq!(edges.len(), g.edge_count());
+        assert_eq!(edges.len(), 3 * 3 + 4 * 2);
+        assert_eq!(edges[0], [0, 1]);
+        assert_eq!(edges[9], [0, 4]);
+        for [a, b] in edges {
+            let ((ia, ja), (ib, jb)) = (g.coords(a), g.coords(b));
+            assert!(a < b);
+            assert_eq!(ib - ia + jb - ja, 1, "edge [{a}, {b}]");
+        }
+    }
+
+    /// On 4 x 4 quads the second ring is the 8 vertices around the centre.
+    #[test]
+    fn second_ring() {
+        let g = QuadGrid::new(4, 4).unwrap();
+        assert_eq!(g.second_ring(), [6, 7, 8, 11, 13, 16, 17, 18]);
+        assert!(QuadGrid::new(1, 4).unwrap().second_ring().is_empty());
+    }
+}

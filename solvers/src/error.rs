@@ -1,4 +1,5 @@
-//! Typed errors of the solver's setup: settings validation and the analysis of a model.
+//! Typed errors of the solver's setup: settings validation, the analysis of a model, and a
+//! numeric factor paired with the wrong analysis.
 //! A time step itself never returns an error; it reports a [`crate::StepStatus`].
 
 use core::fmt;
@@ -44,6 +45,14 @@ pub enum SolverError {
     ModelChanged,
     /// The model has more unknowns or matrix entries than 32-bit indices address.
     TooLarge,
+    /// A numeric factor ([`crate::ldlt::Ldlt`]) was handed a symbolic analysis other than
+    /// the one it was made for (another pattern or ordering, even of the same order).
+    SymbolicMismatch {
+        /// Order of the analysis the factor was made for.
+        factor_order: usize,
+        /// Order of the analysis it was handed.
+        symbolic_order: usize,
+    },
 }
 
 impl fmt::Display for SolverError {
@@ -80,6 +89,13 @@ impl fmt::Display for SolverError {
                 "the model's term families changed without a new topology version"
             ),
             Self::TooLarge => write!(f, "the model exceeds 32-bit sparse indices"),
+            Self::SymbolicMismatch {
+                factor_order,
+                symbolic_order,
+            } => write!(
+                f,
+                "a numeric factor made for another symbolic analysis (order {factor_order}) was handed one of order {symbolic_order}"
+            ),
         }
     }
 }

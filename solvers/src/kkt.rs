@@ -23,18 +23,23 @@ pub struct Refinement<T> {
     pub steps: u32,
 }
 
-/// A KKT matrix with a fixed pattern, its symbolic analysis and a numeric factor; every
-/// buffer is sized at construction.
+/// A KKT matrix with a fixed pattern, its symbolic analysis and a numeric factor.
+///
+/// Owns the pattern, the symbolic analysis, the factor (sizes in their docs), the
+/// upper-triangle values (`nnz` of the pattern) and five work vectors of the matrix order
+/// $n$; [`Kkt::set_equilibration`] adds the scaling's four buffers (three of order $n$, one
+/// of `nnz`). Everything is allocated at setup ([`Kkt::new`], [`Kkt::set_equilibration`]);
+/// factorizing and solving allocate nothing. The factor is made for this very analysis, so the two always pair.
 #[derive(Clone, Debug)]
 pub struct Kkt<T> {
     /// The pattern and scatter maps.
-    pub pattern: KktPattern,
+    pub(crate) pattern: KktPattern,
     /// The symbolic analysis of the pattern.
-    pub symbolic: Symbolic,
+    symbolic: Symbolic,
     /// The numeric factor (valid after [`Kkt::factorize`]).
-    pub factor: Ldlt<T>,
+    factor: Ldlt<T>,
     /// Upper-triangle values, indexed by the pattern's slots.
-    pub values: Vec<T>,
+    pub(crate) values: Vec<T>,
     /// Natural size of each pivot (new order), the unit of the regularization thresholds.
     pivot_scale: Vec<T>,
     /// Symmetric equilibration $D$ (see [`Kkt::set_equilibration`]).
@@ -64,6 +69,44 @@ impl<T: Real> Kkt<T> {
             correction: vec![T::ZERO; n],
             previous: vec![T::ZERO; n],
         }
+    }
+
+    /// The pattern and its scatter maps.
+    #[inline]
+    #[must_use]
+    pub fn pattern(&self) -> &KktPattern {
+        &self.pattern
+    }
+
+    /// The symbolic analysis of [`Kkt::pattern`].
+    #[inline]
+    #[must_use]
+    pub fn symbolic(&self) -> &Symbolic {
+        &self.symbolic
+    }
+
+    /// The numeric factor of the last [`Kkt::factorize`] (of $D K D$ when equilibrated), in
+    /// [`Kkt::symbolic`]'s layout.
+    #[inline]
+    #[must_use]
+    pub fn factor(&self) -> &Ldlt<T> {
+        &self.factor
+    }
+
+    /// The upper-triangle values, one per pattern slot (`pattern().nnz()` entries, column
+    /// $c$ at `col_ptr[c]..col_ptr[c + 1]`, rows in `row_idx`).
+    #[inline]
+    #[must_use]
+    pub fn values(&self) -> &[T] {
+        &self.values
+    }
+
+    /// The upper-triangle values, mutable (same layout as [`Kkt::values`]): set them before
+    /// [`Kkt::factorize`]. The length is fixed by the pattern.
+    #[inline]
+    #[must_use]
+    pub fn values_mut(&mut self) -> &mut [T] {
+        &mut self.values
     }
 
     /// Factorizes $\tilde K = D K D$ instead of $K$, with $D$ from [`RUIZ_PASSES`] passes of
@@ -106,12 +149,14 @@ impl<T: Real> Kkt<T> {
                     *r = bi * di;
                 }
                 self.factor
-                    .solve(&self.symbolic, out, &e.rhs, &mut self.scratch);
+                    .solve_paired(&self.symbolic, out, &e.rhs, &mut self.scratch);
                 for (o, &di) in out.iter_mut().zip(&e.d) {
                     *o *= di;
                 }
             }
-            None => self.factor.solve(&self.symbolic, out, b, &mut self.scratch),
+            None => self
+                .factor
+                .solve_paired(&self.symbolic, out, b, &mut self.scratch),
         }
     }
 
@@ -151,7 +196,7 @@ impl<T: Real> Kkt<T> {
                 }
             };
         }
-        self.factor.factor(
+        self.factor.factor_paired(
             &self.symbolic,
             values,
             &self.pivot_scale,

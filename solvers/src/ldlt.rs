@@ -15,10 +15,12 @@ use alloc::vec;
 use alloc::vec::Vec;
 use folio_kernels::Real;
 
+use crate::error::SolverError;
 use crate::symbolic::Symbolic;
 
 /// Outcome of one numeric factorization.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum FactorOutcome {
     /// Factorized; `regularized` pivots were replaced by $s_k \delta$.
     Factored {
@@ -35,15 +37,23 @@ pub enum FactorOutcome {
     },
 }
 
-/// Numeric factor values and workspace for one [`Symbolic`] (sizes fixed at creation).
+/// Numeric factor values and workspace for one [`Symbolic`].
+///
+/// Owns $L$'s strictly lower values ([`Symbolic::nnz_l`]), the pivots $D$ ($n$) and one
+/// dense work vector ($n$), all allocated by [`Ldlt::new`] at setup; factorizing and solving
+/// allocate nothing. It remembers the analysis it was made for (its order and
+/// [`Symbolic::fingerprint`]) and its entry points refuse any other with
+/// [`SolverError::SymbolicMismatch`].
 #[derive(Clone, Debug)]
 pub struct Ldlt<T> {
     /// Strictly lower values of $L$ (in the symbolic's layout).
-    pub l: Vec<T>,
+    l: Vec<T>,
     /// The pivots $D$.
-    pub d: Vec<T>,
+    d: Vec<T>,
     /// Dense work vector, zero between uses.
     work: Vec<T>,
+    /// [`Symbolic::fingerprint`] of the analysis this factor belongs to.
+    fingerprint: u64,
 }
 
 impl<T: Real> Ldlt<T> {
@@ -54,12 +64,67 @@ impl<T: Real> Ldlt<T> {
             l: vec![T::ZERO; symbolic.nnz_l()],
             d: vec![T::ZERO; symbolic.n],
             work: vec![T::ZERO; symbolic.n],
+            fingerprint: symbolic.fingerprint,
         }
     }
 
-    /// Factorizes the KKT values `kkt` (indexed by the pattern's slots). Pivot $k$ (new
-    /// order) with $s_k d_k \le$ `epsilon * scale[k]` becomes $s_k\,$`delta * scale[k]`.
+    /// Strictly lower values of $L$, [`Symbolic::nnz_l`] entries in the symbolic's layout:
+    /// column $j$ (new order) at [`Symbolic::l_col_ptr`]`[j]..[j + 1]`, rows in
+    /// [`Symbolic::l_row_idx`]. Valid after a successful [`Ldlt::factor`].
+    #[inline]
+    #[must_use]
+    pub fn l(&self) -> &[T] {
+        &self.l
+    }
+
+    /// The pivots $D$, $n$ entries in the new order (after regularization). Valid after a
+    /// successful [`Ldlt::factor`].
+    #[inline]
+    #[must_use]
+    pub fn d(&self) -> &[T] {
+        &self.d
+    }
+
+    /// `Ok` when this factor was made for `symbolic` (same order and fingerprint).
+    ///
+    /// # Errors
+    /// [`SolverError::SymbolicMismatch`] otherwise.
+    pub fn check(&self, symbolic: &Symbolic) -> Result<(), SolverError> {
+        if symbolic.n == self.d.len()
+            && symbolic.nnz_l() == self.l.len()
+            && symbolic.fingerprint == self.fingerprint
+        {
+            Ok(())
+        } else {
+            Err(SolverError::SymbolicMismatch {
+                factor_order: self.d.len(),
+                symbolic_order: symbolic.n,
+            })
+        }
+    }
+
+    /// Factorizes the KKT values `kkt` (indexed by the pattern's slots, `nnz` of the
+    /// pattern). Pivot $k$ (new order) with $s_k d_k \le$ `epsilon * scale[k]` becomes
+    /// $s_k\,$`delta * scale[k]`; `scale` has $n$ entries.
+    ///
+    /// # Errors
+    /// [`SolverError::SymbolicMismatch`] when `symbolic` is not the analysis this factor was
+    /// made for; nothing is written then.
     pub fn factor(
+        &mut self,
+        symbolic: &Symbolic,
+        kkt: &[T],
+        scale: &[T],
+        epsilon: T,
+        delta: T,
+    ) -> Result<FactorOutcome, SolverError> {
+        self.check(symbolic)?;
+        Ok(self.factor_paired(symbolic, kkt, scale, epsilon, delta))
+    }
+
+    /// [`Ldlt::factor`] for a caller that holds this factor together with its own
+    /// `symbolic` (a [`crate::Kkt`]) and so cannot mismatch them.
+    pub(crate) fn factor_paired(
         &mut self,
         symbolic: &Symbolic,
         kkt: &[T],
@@ -115,8 +180,21 @@ impl<T: Real> Ldlt<T> {
         }
     }
 
-    /// Solves $L D L^\top z = b$ in place in the new order (`x` holds $P b$ on entry).
-    pub fn solve_permuted(&self, symbolic: &Symbolic, x: &mut [T]) {
+    /// Solves $L D L^\top z = b$ in place in the new order (`x` holds $P b$ on entry, $n$
+    /// entries).
+    ///
+    /// # Errors
+    /// [`SolverError::SymbolicMismatch`] when `symbolic` is not this factor's analysis; `x`
+    /// is left as it was.
+    pub fn solve_permuted(&self, symbolic: &Symbolic, x: &mut [T]) -> Result<(), SolverError> {
+        self.check(symbolic)?;
+        self.solve_permuted_paired(symbolic, x);
+        Ok(())
+    }
+
+    /// [`Ldlt::solve_permuted`] for a caller that holds the pair (see
+    /// [`Ldlt::factor_paired`]).
+    fn solve_permuted_paired(&self, symbolic: &Symbolic, x: &mut [T]) {
         let s = symbolic;
         for j in 0..s.n {
             let xj = x[j];
@@ -138,14 +216,193 @@ impl<T: Real> Ldlt<T> {
         }
     }
 
-    /// Solves $K z = b$: permutes `b` into `scratch`, solves, and writes `z` to `out`.
-    pub fn solve(&self, symbolic: &Symbolic, out: &mut [T], b: &[T], scratch: &mut [T]) {
+    /// Solves $K z = b$: permutes `b` into `scratch`, solves, and writes `z` to `out` (all
+    /// $n$ entries, in the original order).
+    ///
+    /// # Errors
+    /// [`SolverError::SymbolicMismatch`] when `symbolic` is not this factor's analysis;
+    /// nothing is written then.
+    pub fn solve(
+        &self,
+        symbolic: &Symbolic,
+        out: &mut [T],
+        b: &[T],
+        scratch: &mut [T],
+    ) -> Result<(), SolverError> {
+        self.check(symbolic)?;
+        self.solve_paired(symbolic, out, b, scratch);
+        Ok(())
+    }
+
+    /// [`Ldlt::solve`] for a caller that holds the pair (see [`Ldlt::factor_paired`]).
+    pub(crate) fn solve_paired(
+        &self,
+        symbolic: &Symbolic,
+        out: &mut [T],
+        b: &[T],
+        scratch: &mut [T],
+    ) {
         for (new, &old) in symbolic.perm.iter().enumerate() {
             scratch[new] = b[old as usize];
         }
-        self.solve_permuted(symbolic, scratch);
+        self.solve_permuted_paired(symbolic, scratch);
         for (new, &old) in symbolic.perm.iter().enumerate() {
             out[old as usize] = scratch[new];
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use alloc::vec;
+    use alloc::vec::Vec;
+
+    use super::{FactorOutcome, Ldlt};
+    use crate::chain::{Chain, dense, kkt_values};
+    use crate::error::SolverError;
+    use crate::ordering::Ordering;
+    use crate::pattern::KktPattern;
+    use crate::symbolic::Symbolic;
+
+    /// A pattern from its upper columns (no term maps).
+    fn upper(dofs: usize, rows: usize, col_ptr: &[u32], row_idx: &[u32]) -> KktPattern {
+        KktPattern {
+            dofs,
+            rows,
+            col_ptr: col_ptr.to_vec(),
+            row_idx: row_idx.to_vec(),
+            ..KktPattern::default()
+        }
+    }
+
+    /// Analyses `pattern` in the natural order and factorizes `values` (unit scales, no
+    /// regularization expected).
+    fn factor(pattern: &KktPattern, values: &[f64]) -> (Symbolic, Ldlt<f64>) {
+        let symbolic = Symbolic::analyse(pattern, Ordering::Natural);
+        let mut ldlt = Ldlt::new(&symbolic);
+        let scale = vec![1.0; pattern.order()];
+        let outcome = ldlt.factor(&symbolic, values, &scale, 1e-12, 1e-8);
+        assert_eq!(
+            outcome,
+            Ok(FactorOutcome::Factored {
+                regularized: 0,
+                regularized_primal: 0
+            })
+        );
+        (symbolic, ldlt)
+    }
+
+    /// $K z = b$ through [`Ldlt::solve`].
+    fn solve(symbolic: &Symbolic, ldlt: &Ldlt<f64>, b: &[f64]) -> Vec<f64> {
+        let (mut z, mut scratch) = (vec![0.0; b.len()], vec![0.0; b.len()]);
+        ldlt.solve(symbolic, &mut z, b, &mut scratch).unwrap();
+        z
+    }
+
+    /// $K = [[4, 2], [2, 0]]$: $L_{10} = 1/2$, $D = (4, -1)$, and $K (1/2, 0) = (2, 1)$.
+    #[test]
+    fn two_by_two_kkt() {
+        let pattern = upper(1, 1, &[0, 1, 3], &[0, 0, 1]);
+        let (symbolic, ldlt) = factor(&pattern, &[4.0, 2.0, 0.0]);
+        assert_eq!(symbolic.l_col_ptr(), &[0, 1, 1]);
+        assert_eq!(symbolic.l_row_idx(), &[1]);
+        assert_eq!(ldlt.l(), &[0.5]);
+        assert_eq!(ldlt.d(), &[4.0, -1.0]);
+        assert_eq!(solve(&symbolic, &ldlt, &[2.0, 1.0]), [0.5, 0.0]);
+    }
+
+    /// $H = \mathrm{diag}(2, 4)$, $J = (1, 1)$: $L_{20} = 1/2$, $L_{21} = 1/4$,
+    /// $D = (2, 4, -3/4)$ (the Schur complement $-J H^{-1} J^\top$), and
+    /// $K (1, -1, 2) = (4, -2, 0)$.
+    #[test]
+    fn three_by_three_kkt() {
+        let pattern = upper(2, 1, &[0, 1, 2, 5], &[0, 1, 0, 1, 2]);
+        let (symbolic, ldlt) = factor(&pattern, &[2.0, 4.0, 1.0, 1.0, 0.0]);
+        assert_eq!(symbolic.perm(), &[0, 1, 2]);
+        assert_eq!(symbolic.signs(), &[1, 1, -1]);
+        assert_eq!(symbolic.etree(), &[2, 2, crate::pattern::NONE]);
+        assert_eq!(symbolic.l_col_ptr(), &[0, 1, 2, 2]);
+        assert_eq!(symbolic.l_row_idx(), &[2, 2]);
+        assert_eq!(ldlt.l(), &[0.5, 0.25]);
+        assert_eq!(ldlt.d(), &[2.0, 4.0, -0.75]);
+        assert_eq!(solve(&symbolic, &ldlt, &[4.0, -2.0, 0.0]), [1.0, -1.0, 2.0]);
+    }
+
+    /// $L D L^\top = P K P^\top$ on the chain's KKT for the orders that leave no structural
+    /// zero, read through the accessors.
+    #[test]
+    fn factor_reproduces_permuted_matrix() {
+        let pattern = Chain::new(7).pattern(false);
+        let values = kkt_values(&pattern);
+        let k = dense(&pattern, &values);
+        let n = pattern.order();
+        for ordering in [Ordering::Natural, Ordering::AmdDelayedDuals] {
+            let symbolic = Symbolic::analyse(&pattern, ordering);
+            let mut ldlt = Ldlt::new(&symbolic);
+            let outcome = ldlt.factor(&symbolic, &values, &vec![1.0; n], 1e-12, 1e-8);
+            assert!(matches!(
+                outcome,
+                Ok(FactorOutcome::Factored { regularized: 0, .. })
+            ));
+            assert!(!symbolic.structural_zero().contains(&true));
+            // Dense unit lower L from the column storage.
+            let mut l = vec![vec![0.0; n]; n];
+            for (j, row) in l.iter_mut().enumerate() {
+                row[j] = 1.0;
+            }
+            let ptr = symbolic.l_col_ptr();
+            for j in 0..n {
+                for at in ptr[j] as usize..ptr[j + 1] as usize {
+                    l[symbolic.l_row_idx()[at] as usize][j] = ldlt.l()[at];
+                }
+            }
+            let perm = symbolic.perm();
+            for r in 0..n {
+                for c in 0..n {
+                    let ldl: f64 = (0..n).map(|j| l[r][j] * ldlt.d()[j] * l[c][j]).sum();
+                    let want = k[perm[r] as usize][perm[c] as usize];
+                    assert!((ldl - want).abs() <= 1e-13, "{ordering:?} ({r}, {c})");
+                }
+            }
+        }
+    }
+
+    /// A factor made for one analysis refuses another of the same order and the same
+    /// number of factor entries, and writes nothing.
+    #[test]
+    fn refuses_another_symbolic() {
+        // H with a coupling (0, 1) and J = (0, 1), against H diagonal and J = (1, 1).
+        let coupled = upper(2, 1, &[0, 1, 3, 5], &[0, 0, 1, 1, 2]);
+        let separate = upper(2, 1, &[0, 1, 2, 5], &[0, 1, 0, 1, 2]);
+        let values = [2.0, 4.0, 1.0, 1.0, 0.0];
+        let (ours, mut ldlt) = factor(&separate, &values);
+        let theirs = Symbolic::analyse(&coupled, Ordering::Natural);
+        assert_eq!(
+            (theirs.order(), theirs.nnz_l()),
+            (ours.order(), ours.nnz_l())
+        );
+        let mismatch = SolverError::SymbolicMismatch {
+            factor_order: 3,
+            symbolic_order: 3,
+        };
+        let before = ldlt.clone();
+        let outcome = ldlt.factor(&theirs, &values, &[1.0; 3], 1e-12, 1e-8);
+        assert_eq!(outcome, Err(mismatch));
+        assert_eq!((ldlt.l(), ldlt.d()), (before.l(), before.d()));
+        let mut x = [1.0, 2.0, 3.0];
+        assert_eq!(ldlt.solve_permuted(&theirs, &mut x), Err(mismatch));
+        assert_eq!(x, [1.0, 2.0, 3.0]);
+        let (mut out, mut scratch) = ([0.0; 3], [0.0; 3]);
+        assert_eq!(
+            ldlt.solve(&theirs, &mut out, &x, &mut scratch),
+            Err(mismatch)
+        );
+        assert_eq!(out, [0.0; 3]);
+        // Its own analysis, or a fresh analysis of the same pattern, is accepted.
+        assert_eq!(ldlt.check(&ours), Ok(()));
+        assert_eq!(
+            ldlt.check(&Symbolic::analyse(&separate, Ordering::Natural)),
+            Ok(())
+        );
     }
 }

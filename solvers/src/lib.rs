@@ -27,6 +27,8 @@
 extern crate alloc;
 
 mod assembly;
+#[cfg(test)]
+mod chain;
 pub mod error;
 pub mod kkt;
 pub mod ldlt;

@@ -139,3 +139,68 @@ fn delay_duals(pattern: &KktPattern, order: &[u32]) -> Vec<u32> {
 fn column_rows(pattern: &KktPattern, c: usize) -> &[u32] {
     &pattern.row_idx[pattern.col_ptr[c] as usize..pattern.col_ptr[c + 1] as usize]
 }
+
+#[cfg(test)]
+mod tests {
+    use alloc::vec;
+    use alloc::vec::Vec;
+
+    use super::{Ordering, permutation};
+    use crate::chain::Chain;
+
+    /// `inverse[old] = new` of `perm[new] = old`.
+    fn inverse(perm: &[u32]) -> Vec<u32> {
+        let mut inverse = vec![u32::MAX; perm.len()];
+        for (new, &old) in perm.iter().enumerate() {
+            inverse[old as usize] = new as u32;
+        }
+        inverse
+    }
+
+    #[test]
+    fn every_order_is_a_permutation_with_an_inverse() {
+        for hessian in [false, true] {
+            let pattern = Chain::new(9).pattern(hessian);
+            let n = pattern.order();
+            for ordering in [Ordering::Natural, Ordering::Amd, Ordering::AmdDelayedDuals] {
+                let perm = permutation(&pattern, ordering);
+                let mut sorted = perm.clone();
+                sorted.sort_unstable();
+                assert_eq!(sorted, (0..n as u32).collect::<Vec<_>>(), "{ordering:?}");
+                let inv = inverse(&perm);
+                for k in 0..n {
+                    assert_eq!(inv[perm[k] as usize] as usize, k);
+                    assert_eq!(perm[inv[k] as usize] as usize, k);
+                }
+            }
+            let natural = permutation(&pattern, Ordering::Natural);
+            assert_eq!(natural, (0..n as u32).collect::<Vec<_>>());
+        }
+    }
+
+    /// The delayed order eliminates every constraint row after all its primal neighbours,
+    /// and keeps AMD's relative order of the primal unknowns.
+    #[test]
+    fn delayed_duals_follow_their_neighbours() {
+        let pattern = Chain::new(9).pattern(false);
+        let amd = permutation(&pattern, Ordering::Amd);
+        let delayed = permutation(&pattern, Ordering::AmdDelayedDuals);
+        let at = inverse(&delayed);
+        for c in pattern.dofs..pattern.order() {
+            let range = pattern.col_ptr[c] as usize..pattern.col_ptr[c + 1] as usize;
+            for &r in &pattern.row_idx[range] {
+                if (r as usize) < pattern.dofs {
+                    assert!(at[r as usize] < at[c], "row {c} before dof {r}");
+                }
+            }
+        }
+        let primal = |order: &[u32]| -> Vec<u32> {
+            order
+                .iter()
+                .copied()
+                .filter(|&k| (k as usize) < pattern.dofs)
+                .collect()
+        };
+        assert_eq!(primal(&amd), primal(&delayed));
+    }
+}

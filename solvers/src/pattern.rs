@@ -10,6 +10,7 @@
 //! then a scatter through these maps: no search, no allocation.
 
 use alloc::vec::Vec;
+use core::ops::Range;
 use folio_kernels::{Constraint, Potential, Real};
 
 use crate::error::SolverError;
@@ -41,40 +42,99 @@ pub(crate) struct Family {
 }
 
 /// The upper-triangle KKT pattern of a model and every term's scatter map.
+///
+/// Owns the coordinate numbering (`3 * nodes` and `dofs` entries), the compressed upper
+/// columns (`order + 1` pointers, `nnz` rows) and the term maps (`3 N` local dofs per term,
+/// `9 N^2` Hessian slots per term with a Hessian, `3 N R` Jacobian slots per term), all
+/// allocated by [`KktPattern::build`] at setup. Fields are read through the accessors.
 #[derive(Clone, Debug, Default)]
 pub struct KktPattern {
     /// Number of free coordinates (primal unknowns).
-    pub dofs: usize,
+    pub(crate) dofs: usize,
     /// Number of constraint rows (dual unknowns).
-    pub rows: usize,
+    pub(crate) rows: usize,
     /// `dof_of[3 * node + axis]`: the free coordinate's index, or [`NONE`] when eliminated.
-    pub dof_of: Vec<u32>,
+    pub(crate) dof_of: Vec<u32>,
     /// `coordinate_of[dof] = 3 * node + axis`.
-    pub coordinate_of: Vec<u32>,
+    pub(crate) coordinate_of: Vec<u32>,
     /// Column pointers, `dofs + rows + 1` entries.
-    pub col_ptr: Vec<u32>,
+    pub(crate) col_ptr: Vec<u32>,
     /// Row index of each stored entry; rows are sorted within a column and the last entry of
     /// every column is its diagonal.
-    pub row_idx: Vec<u32>,
+    pub(crate) row_idx: Vec<u32>,
     pub(crate) families: Vec<Family>,
     pub(crate) local_dofs: Vec<u32>,
     pub(crate) hessian_slots: Vec<u32>,
     pub(crate) jacobian_slots: Vec<u32>,
     /// Whether the constraint Hessian blocks are part of the pattern.
-    pub with_constraint_hessian: bool,
+    pub(crate) with_constraint_hessian: bool,
 }
 
 impl KktPattern {
+    /// Number of free coordinates (primal unknowns): the first `dofs()` rows and columns.
+    #[inline]
+    #[must_use]
+    pub fn dofs(&self) -> usize {
+        self.dofs
+    }
+
+    /// Number of constraint rows (dual unknowns): the last `rows()` rows and columns.
+    #[inline]
+    #[must_use]
+    pub fn rows(&self) -> usize {
+        self.rows
+    }
+
     /// Order of the KKT matrix, `dofs + rows`.
+    #[inline]
     #[must_use]
     pub fn order(&self) -> usize {
         self.dofs + self.rows
     }
 
     /// Number of stored (upper-triangle) entries.
+    #[inline]
     #[must_use]
     pub fn nnz(&self) -> usize {
         self.row_idx.len()
+    }
+
+    /// Per model coordinate `3 * node + axis` (`3 * nodes` entries): its free coordinate's
+    /// index, or [`NONE`] when the model eliminates it.
+    #[inline]
+    #[must_use]
+    pub fn dof_of(&self) -> &[u32] {
+        &self.dof_of
+    }
+
+    /// Per free coordinate (`dofs` entries): its model coordinate `3 * node + axis`.
+    #[inline]
+    #[must_use]
+    pub fn coordinate_of(&self) -> &[u32] {
+        &self.coordinate_of
+    }
+
+    /// Column pointers of the upper triangle, `order + 1` entries: column `c`'s rows and
+    /// value slots are `col_ptr()[c]..col_ptr()[c + 1]`.
+    #[inline]
+    #[must_use]
+    pub fn col_ptr(&self) -> &[u32] {
+        &self.col_ptr
+    }
+
+    /// Row index of each stored entry (`nnz` entries): sorted within a column, the last
+    /// entry of every column its diagonal.
+    #[inline]
+    #[must_use]
+    pub fn row_idx(&self) -> &[u32] {
+        &self.row_idx
+    }
+
+    /// Whether the constraint Hessian blocks are part of the pattern.
+    #[inline]
+    #[must_use]
+    pub fn with_constraint_hessian(&self) -> bool {
+        self.with_constraint_hessian
     }
 
     /// Slot of diagonal entry `k` (the last entry of column `k`).
@@ -127,27 +187,8 @@ impl KktPattern {
         }
         let (families, local_dofs, rows) = (declare.families, declare.local_dofs, declare.rows);
         let (hessian_len, jacobian_len) = (declare.hessian_len, declare.jacobian_len);
-        let mut entries = declare.entries;
         let dofs = coordinate_of.len();
-        let order = dofs + rows;
-        if order >= NONE as usize {
-            return Err(SolverError::TooLarge);
-        }
-        entries.extend((0..order as u64).map(|k| (k << 32) | k));
-        entries.sort_unstable();
-        entries.dedup();
-        if entries.len() >= NONE as usize {
-            return Err(SolverError::TooLarge);
-        }
-        let mut col_ptr = alloc::vec![0u32; order + 1];
-        let mut row_idx = Vec::with_capacity(entries.len());
-        for &key in &entries {
-            col_ptr[(key >> 32) as usize + 1] += 1;
-            row_idx.push(key as u32);
-        }
-        for k in 0..order {
-            col_ptr[k + 1] += col_ptr[k];
-        }
+        let (col_ptr, row_idx) = compress(declare.entries, dofs + rows)?;
         let mut pattern = Self {
             dofs,
             rows,
@@ -261,27 +302,7 @@ impl Declare<'_> {
                 let c = 3 * node as usize;
                 self.local_dofs.extend_from_slice(&self.dof_of[c..c + 3]);
             }
-            let local = base..self.local_dofs.len();
-            if with_hessian {
-                for p in local.clone() {
-                    for q in local.clone() {
-                        let (a, b) = (self.local_dofs[p], self.local_dofs[q]);
-                        if a != NONE && b != NONE && a <= b {
-                            self.entries.push((u64::from(b) << 32) | u64::from(a));
-                        }
-                    }
-                }
-            }
-            for r in 0..rows {
-                // The column of this row's multiplier.
-                let col = (self.dofs + self.rows + r) as u64;
-                for p in local.clone() {
-                    let a = self.local_dofs[p];
-                    if a != NONE {
-                        self.entries.push((col << 32) | u64::from(a));
-                    }
-                }
-            }
+            self.term_entries(base..self.local_dofs.len(), rows, with_hessian);
             self.rows += rows;
         }
         self.hessian_len += if with_hessian { terms * 9 * N * N } else { 0 };
@@ -297,6 +318,60 @@ impl Declare<'_> {
             first_row,
         });
     }
+
+    /// Records the entries of the term whose local dofs are `local_dofs[local]`: its Hessian
+    /// couplings (`with_hessian`) and its `rows` Jacobian rows, whose multipliers are the
+    /// next `rows` constraint rows.
+    fn term_entries(&mut self, local: Range<usize>, rows: usize, with_hessian: bool) {
+        if with_hessian {
+            for p in local.clone() {
+                for q in local.clone() {
+                    let (a, b) = (self.local_dofs[p], self.local_dofs[q]);
+                    if a != NONE && b != NONE && a <= b {
+                        self.entries.push((u64::from(b) << 32) | u64::from(a));
+                    }
+                }
+            }
+        }
+        for r in 0..rows {
+            // The column of this row's multiplier.
+            let col = (self.dofs + self.rows + r) as u64;
+            for p in local.clone() {
+                let a = self.local_dofs[p];
+                if a != NONE {
+                    self.entries.push((col << 32) | u64::from(a));
+                }
+            }
+        }
+    }
+}
+
+/// Compressed upper columns `(col_ptr, row_idx)` of order `order` from `(col << 32) | row`
+/// keys, with every diagonal entry added: `order + 1` column pointers, rows sorted within
+/// each column, duplicates merged.
+///
+/// # Errors
+/// [`SolverError::TooLarge`] beyond 32-bit indices.
+fn compress(mut entries: Vec<u64>, order: usize) -> Result<(Vec<u32>, Vec<u32>), SolverError> {
+    if order >= NONE as usize {
+        return Err(SolverError::TooLarge);
+    }
+    entries.extend((0..order as u64).map(|k| (k << 32) | k));
+    entries.sort_unstable();
+    entries.dedup();
+    if entries.len() >= NONE as usize {
+        return Err(SolverError::TooLarge);
+    }
+    let mut col_ptr = alloc::vec![0u32; order + 1];
+    let mut row_idx = Vec::with_capacity(entries.len());
+    for &key in &entries {
+        col_ptr[(key >> 32) as usize + 1] += 1;
+        row_idx.push(key as u32);
+    }
+    for k in 0..order {
+        col_ptr[k + 1] += col_ptr[k];
+    }
+    Ok((col_ptr, row_idx))
 }
 
 impl<T: Real> TermVisitor<T> for Declare<'_> {
@@ -310,5 +385,89 @@ impl<T: Real> TermVisitor<T> for Declare<'_> {
     ) {
         let with_hessian = self.with_constraint_hessian && !C::LINEAR;
         self.family::<N>(set.terms().iter().map(|t| t.nodes), R, with_hessian);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{KktPattern, NONE};
+    use crate::chain::Chain;
+
+    /// Slot `s` holds upper entry `(row, col)`.
+    fn holds(p: &KktPattern, s: u32, row: u32, col: u32) -> bool {
+        let range = p.col_ptr[col as usize]..p.col_ptr[col as usize + 1];
+        range.contains(&s) && p.row_idx[s as usize] == row
+    }
+
+    /// Nine coordinates less node 0's Z: dofs 0-1 on node 0, 2-4 on node 1, 5-7 on node 2.
+    #[test]
+    fn dof_numbering_skips_eliminated_coordinates() {
+        let p = Chain::new(3).pattern(false);
+        assert_eq!((p.dofs, p.rows, p.order()), (8, 1, 9));
+        assert_eq!(p.dof_of, [0, 1, NONE, 2, 3, 4, 5, 6, 7]);
+        assert_eq!(p.coordinate_of, [0, 1, 3, 4, 5, 6, 7, 8]);
+    }
+
+    /// Springs `[0, 1]` and `[1, 2]` couple dofs 0-4 and 2-7 (15 + 21 - 6 upper entries);
+    /// the constraint `[0, 2]` adds its column (dofs 0, 1, 5, 6, 7 and the diagonal), and its
+    /// Hessian the 6 couplings of node 0 with node 2.
+    #[test]
+    fn upper_pattern_of_a_tiny_chain() {
+        for (hessian, nnz) in [(false, 36), (true, 42)] {
+            let p = Chain::new(3).pattern(hessian);
+            assert_eq!(p.nnz(), nnz, "with constraint Hessian: {hessian}");
+            assert_eq!(&p.row_idx[p.col_ptr[8] as usize..], [0, 1, 5, 6, 7, 8]);
+            for c in 0..p.order() {
+                let rows = &p.row_idx[p.col_ptr[c] as usize..p.col_ptr[c + 1] as usize];
+                assert!(rows.windows(2).all(|w| w[0] < w[1]), "column {c} sorted");
+                assert_eq!(
+                    rows.last(),
+                    Some(&(c as u32)),
+                    "column {c} ends on its diagonal"
+                );
+                assert_eq!(p.diagonal_slot(c), p.col_ptr[c + 1] as usize - 1);
+            }
+        }
+    }
+
+    /// Every term's Hessian and Jacobian scatter index lands on the upper-triangle slot of
+    /// its local dofs, or is [`NONE`] for an eliminated coordinate or a lower entry.
+    #[test]
+    fn scatter_maps_land_on_their_entries() {
+        let chain = Chain::new(5);
+        let nodes: [&[[u32; 2]]; 2] = [&[[0, 1], [1, 2], [2, 3], [3, 4]], &[[0, 2], [2, 4]]];
+        for hessian in [false, true] {
+            let p = chain.pattern(hessian);
+            assert_eq!(p.families.len(), 2);
+            for (f, terms) in p.families.iter().zip(nodes) {
+                assert_eq!((f.terms, f.nodes), (terms.len(), 2));
+                assert_eq!(f.has_hessian, f.rows == 0 || hessian);
+                for (t, term) in terms.iter().enumerate() {
+                    let local = &p.local_dofs[f.dof_offset + 6 * t..][..6];
+                    let expected: [u32; 6] =
+                        core::array::from_fn(|q| p.dof_of[3 * term[q / 3] as usize + q % 3]);
+                    assert_eq!(local, expected);
+                    for (a, &da) in local.iter().enumerate() {
+                        for (b, &db) in local.iter().enumerate().filter(|_| f.has_hessian) {
+                            let s = p.hessian_slots[f.hessian_offset + 36 * t + 6 * a + b];
+                            if da == NONE || db == NONE || da > db {
+                                assert_eq!(s, NONE);
+                            } else {
+                                assert!(holds(&p, s, da, db), "Hessian ({a}, {b}) of term {t}");
+                            }
+                        }
+                        for r in 0..f.rows {
+                            let s = p.jacobian_slots[f.jacobian_offset + 6 * (t * f.rows + r) + a];
+                            let col = (p.dofs + f.first_row + t * f.rows + r) as u32;
+                            if da == NONE {
+                                assert_eq!(s, NONE);
+                            } else {
+                                assert!(holds(&p, s, da, col), "Jacobian row {r}, dof {a}");
+                            }
+                        }
+                    }
+                }
+            }
+        }
     }
 }

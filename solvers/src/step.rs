@@ -19,7 +19,7 @@
 
 use alloc::vec;
 use alloc::vec::Vec;
-use folio_kernels::{Real, Vec3Ops, math};
+use folio_kernels::{Real, Vec3Ops};
 
 use crate::assembly::{Assemble, Derivatives};
 use crate::error::SolverError;
@@ -30,6 +30,11 @@ use crate::ordering::Ordering;
 use crate::pattern::KktPattern;
 use crate::report::{StepReport, StepStatus};
 use crate::settings::Settings;
+
+mod line_search;
+mod projection;
+
+pub use projection::Correction;
 
 /// Node positions and velocities (page units, page units per second).
 #[derive(Clone, Debug, PartialEq)]
@@ -49,7 +54,8 @@ impl<T: Real> State<T> {
     }
 }
 
-/// Everything sized by one topology: the KKT system and the step's vectors.
+/// Everything sized by one topology: the KKT system and the step's vectors, allocated
+/// together by [`Solver::analyse`].
 #[derive(Clone, Debug)]
 struct Workspace<T: Real> {
     version: u64,
@@ -80,8 +86,15 @@ struct Workspace<T: Real> {
 }
 
 /// The time stepper: settings, and the symbolic analysis and buffers of the last topology it
-/// saw. Setup (the first step, or a step after a topology change) allocates; every other
-/// step does not.
+/// saw.
+///
+/// Owns its [`Settings`] and, once a model is analysed, one workspace for that topology: the
+/// [`Kkt`] system (pattern, symbolic analysis, factor and values) and the step's vectors
+/// (`dofs + rows` entries for the KKT right-hand side, product and solution, one per dof,
+/// row or node for the rest). The workspace is allocated at setup: the first step,
+/// [`Solver::analyse`] or [`Solver::linearize`], or a step after a change of topology
+/// version, ordering, constraint-Hessian switch or equilibration. Every other step
+/// allocates nothing.
 #[derive(Clone, Debug)]
 pub struct Solver<T: Real> {
     settings: Settings<T>,
@@ -229,105 +242,20 @@ impl<T: Real> Solver<T> {
         }
         let mut converged = false;
         for iteration in 0..s.newton_iterations {
-            let e = w.evaluate(model, h, false, Derivatives::Second)?;
-            if !e.finite {
-                report.status = if iteration == 0 {
-                    StepStatus::NonFiniteInput
-                } else {
-                    StepStatus::NumericalFailure
-                };
-                return Ok(report);
-            }
-            w.fill_rhs(h);
-            let residual = w.residual(h);
-            report.residual = Some(residual);
-            report.constraint_residual = Some(max_abs(&w.constraint));
-            if residual <= s.tolerance {
-                converged = true;
-                break;
-            }
-            // A factorization that fails, or a direction the line search refuses, is retried
-            // with the inertia scaled up, M/h^2 -> (1 + gamma) M/h^2 with gamma = 1, 10,
-            // 100, ... (a proximal damping: shorter, better conditioned steps), up to
-            // `damping_retries` times.
-            let mut gamma = T::ZERO;
-            let mut retry = 0;
-            let dofs = w.kkt.pattern.dofs;
-            loop {
-                let (outcome, shift) = w
-                    .kkt
-                    .factorize_with_inertia_correction(s.pivot_epsilon, s.regularization);
-                if shift > report.hessian_shift {
-                    report.hessian_shift = shift;
+            match w.newton_iteration(model, &s, iteration, &mut report)? {
+                Iteration::Converged => {
+                    converged = true;
+                    break;
                 }
-                w.factored = matches!(outcome, FactorOutcome::Factored { .. });
-                let mut solved = false;
-                if let FactorOutcome::Factored { regularized, .. } = outcome {
-                    report.regularized_pivots += regularized;
-                    let refinement = w.kkt.solve_refined(
-                        &mut w.solution,
-                        &w.rhs,
-                        s.refinement_steps,
-                        s.refinement_tolerance,
-                    );
-                    report.iterations += 1;
-                    report.refinement_steps += refinement.steps;
-                    solved = refinement.relative_residual.is_finite()
-                        && max_abs(&w.solution).is_finite();
-                    if solved && refinement.relative_residual > report.linear_residual {
-                        report.linear_residual = refinement.relative_residual;
-                    }
-                }
-                let failed = if solved {
-                    if !s.line_search {
-                        w.set_trial(T::ONE);
-                        report.constraint_residual = None;
-                        break;
-                    }
-                    let search = w.line_search(
-                        model,
-                        h,
-                        e.energy,
-                        s.max_halvings,
-                        s.second_order_correction,
-                        s.merit_slack,
-                    )?;
-                    report.second_order_corrections += u32::from(search.second_order);
-                    report.merit_before = Some(search.before);
-                    report.merit_after = search.after;
-                    report.halvings += search.halvings;
-                    if search.after.is_some() {
-                        report.constraint_residual = Some(max_abs(&w.constraint));
-                        break;
-                    }
-                    StepStatus::LineSearchFailed
-                } else {
-                    StepStatus::NumericalFailure
-                };
-                if retry == s.damping_retries {
-                    report.status = failed;
-                    return Ok(report);
-                }
-                retry += 1;
-                report.damping_retries = retry;
-                gamma = w.damp(gamma, h);
+                Iteration::Advanced => {}
+                Iteration::Failed => return Ok(report),
             }
-            core::mem::swap(&mut w.x, &mut w.trial);
-            let (_, lambda) = w.solution.split_at(dofs);
-            w.lambda.copy_from_slice(lambda);
-            report.residual = None;
         }
         if !converged && s.check_final_residual {
-            let e = w.evaluate(model, h, false, Derivatives::First)?;
-            if !e.finite {
-                report.status = StepStatus::NumericalFailure;
+            let Some(final_converged) = w.final_residual(model, &s, &mut report)? else {
                 return Ok(report);
-            }
-            w.fill_rhs(h);
-            let residual = w.residual(h);
-            report.residual = Some(residual);
-            report.constraint_residual = Some(max_abs(&w.constraint));
-            converged = residual <= s.tolerance;
+            };
+            converged = final_converged;
         }
         report.status = if converged {
             StepStatus::Converged
@@ -339,152 +267,150 @@ impl<T: Real> Solver<T> {
     }
 }
 
-/// Step halvings a projection iteration may try before it gives up.
-const PROJECTION_HALVINGS: u32 = 6;
-
-/// What [`Solver::project_constraints`] did.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Correction<T> {
-    /// Projection iterations accepted.
-    pub steps: u32,
-    /// $\lVert C(x)\rVert_\infty$ before the first iteration.
-    pub before: T,
-    /// $\lVert C(x)\rVert_\infty$ after the last accepted one.
-    pub after: T,
+/// How one Newton iteration of [`Solver::step`] ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Iteration {
+    /// The residual at the iterate was within the tolerance; nothing was solved.
+    Converged,
+    /// A step was solved and accepted: the iterate and the multipliers moved.
+    Advanced,
+    /// The step failed; the report's status says how, and the state must stay as it was.
+    Failed,
 }
 
-impl<T: Real> Solver<T> {
-    /// Pulls `state` back onto the constraints after a step and anything done to it since
-    /// (collision projection): the mass-weighted closest point on $C(x) = 0$, found by
-    /// Gauss-Newton iterations with the Jacobian re-evaluated at each iterate,
-    /// $$\begin{bmatrix} W & J(x)^\top \\ J(x) & 0\end{bmatrix}\begin{bmatrix}\delta \\ \mu\end{bmatrix}
-    ///   = \begin{bmatrix} 0 \\ -C(x)\end{bmatrix},\qquad x \mathrel{+}= \delta,\ v \mathrel{+}= \delta / h,$$
-    /// with $W = M/h^2$ except on the nodes flagged in `pinned`, whose weight is multiplied by
-    /// `pin_weight` so that they barely move (contact points stay on the surface that pushed
-    /// them). This is the fast projection of Goldenthal et al. 2007; each iteration costs one
-    /// numeric factorization of the analysed pattern and no allocation. The one-Newton-step
-    /// default leaves $C = O(\lVert\Delta x\rVert^2)$ behind, and a collision push of depth
-    /// $d$ leaves $C = O(d/\ell)$ (module docs); this removes both. Iterates until
-    /// $\lVert C\rVert_\infty \le$ `tolerance` or `max_steps` iterations; each iteration
-    /// halves its step (up to 6 times) until $\lVert C\rVert_\infty$ falls, and one that
-    /// cannot lower it ends the projection. Does
-    /// nothing (zero steps) before the first successful step of the topology.
-    ///
-    /// # Errors
-    /// As [`Solver::step`] for a model that changed or a state of the wrong length;
-    /// [`SolverError::StateLength`] also when `pinned` is not one flag per node.
-    pub fn project_constraints<M: Model<T>>(
+impl<T: Real> Workspace<T> {
+    /// One Newton iteration of [`Solver::step`]: evaluates the model at the iterate, checks
+    /// the eq. 3 residual, solves for a step (with damped retries), and accepts it.
+    fn newton_iteration<M: Model<T>>(
         &mut self,
         model: &M,
-        state: &mut State<T>,
-        pinned: &[bool],
-        pin_weight: T,
-        tolerance: T,
-        max_steps: u32,
-    ) -> Result<Correction<T>, SolverError> {
-        let mut out = Correction {
-            steps: 0,
-            before: T::ZERO,
-            after: T::ZERO,
-        };
-        let s = self.settings;
+        s: &Settings<T>,
+        iteration: u32,
+        report: &mut StepReport<T>,
+    ) -> Result<Iteration, SolverError> {
         let h = s.time_step;
-        let Some(w) = self.work.as_mut() else {
-            return Ok(out);
-        };
-        if w.version != model.topology_version() {
-            return Err(SolverError::ModelChanged);
-        }
-        let nodes = w.x.len();
-        if state.x.len() != nodes || state.v.len() != nodes || pinned.len() != nodes {
-            return Err(SolverError::StateLength {
-                expected: nodes,
-                positions: state.x.len(),
-                velocities: state.v.len().min(pinned.len()),
-            });
-        }
-        if !w.factored {
-            return Ok(out);
-        }
-        w.x.copy_from_slice(&state.x);
-        let e = w.evaluate(model, h, false, Derivatives::None)?;
-        let mut residual = max_abs(&w.constraint);
-        if !(e.finite && residual.is_finite()) {
-            return Ok(out);
-        }
-        out.before = residual;
-        let dofs = w.kkt.pattern.dofs;
-        let extra = (pin_weight - T::ONE) / (h * h);
-        while out.steps < max_steps && residual > tolerance {
-            // J(x) and the M/h^2 diagonal; the Hessian blocks stay zero.
-            let e = w.evaluate(model, h, false, Derivatives::First)?;
-            if !e.finite {
-                break;
-            }
-            for (d, &c) in w.kkt.pattern.coordinate_of.iter().enumerate() {
-                if pinned[c as usize / 3] {
-                    w.kkt.values[w.kkt.pattern.diagonal_slot(d)] += w.mass[d] * extra;
-                }
-            }
-            // No inertia correction: the primal block is the diagonal W, positive by
-            // construction, so a regularized primal pivot here is rounding in the
-            // constraint rows' Schur complement, not an indefinite Hessian, and shifting W
-            // would only refactorize up to `MAX_SHIFTS` more times (measured in f32 on the
-            // page turn: the held frames took 2.5 times as long, same result).
-            let outcome = w.kkt.factorize(s.pivot_epsilon, s.regularization);
-            if !matches!(outcome, FactorOutcome::Factored { .. }) {
-                break;
-            }
-            w.rhs[..dofs].iter_mut().for_each(|r| *r = T::ZERO);
-            for (r, &c) in w.rhs[dofs..].iter_mut().zip(&w.constraint) {
-                *r = -c;
-            }
-            w.kkt.solve_refined(
-                &mut w.solution,
-                &w.rhs,
-                s.refinement_steps,
-                s.refinement_tolerance,
-            );
-            // Backtrack while max|C| does not fall (on nearly flat DOG stars the remedied
-            // Jacobian is not the exact one, and a full step can overshoot).
-            let mut alpha = T::ONE;
-            let mut next = None;
-            for _ in 0..PROJECTION_HALVINGS {
-                w.set_trial(alpha);
-                let e = w.evaluate(model, h, true, Derivatives::None)?;
-                let c = max_abs(&w.constraint);
-                if e.finite && c < residual {
-                    next = Some(c);
-                    break;
-                }
-                alpha *= T::HALF;
-            }
-            let Some(next) = next else {
-                break;
+        let e = self.evaluate(model, h, false, Derivatives::Second)?;
+        if !e.finite {
+            report.status = if iteration == 0 {
+                StepStatus::NonFiniteInput
+            } else {
+                StepStatus::NumericalFailure
             };
-            core::mem::swap(&mut w.x, &mut w.trial);
-            residual = next;
-            out.steps += 1;
+            return Ok(Iteration::Failed);
         }
-        out.after = residual;
-        let inv_h = T::ONE / h;
-        for ((x, v), &new) in state.x.iter_mut().zip(state.v.iter_mut()).zip(&w.x) {
-            *v += (new - *x) * inv_h;
-            *x = new;
+        self.fill_rhs(h);
+        let residual = self.residual(h);
+        report.residual = Some(residual);
+        report.constraint_residual = Some(max_abs(&self.constraint));
+        if residual <= s.tolerance {
+            return Ok(Iteration::Converged);
         }
-        Ok(out)
+        if let Some(failed) = self.solve_with_damping(model, s, e.energy, report)? {
+            report.status = failed;
+            return Ok(Iteration::Failed);
+        }
+        self.accept();
+        report.residual = None;
+        Ok(Iteration::Advanced)
     }
-}
 
-/// Outcome of one backtracking line search.
-#[derive(Clone, Copy, Debug)]
-struct LineSearch<T> {
-    before: T,
-    /// Merit at the accepted point; `None` when every halving failed.
-    after: Option<T>,
-    halvings: u32,
-    /// A second-order correction was tried.
-    second_order: bool,
+    /// Factors, solves and (with [`Settings::line_search`]) searches along the step until a
+    /// trial point is accepted into `trial`; `None` then. A factorization that fails, or a
+    /// direction the line search refuses, is retried with the inertia scaled up,
+    /// $M/h^2 \to (1 + \gamma) M/h^2$ with $\gamma = 1, 10, 100, \dots$ (a proximal
+    /// damping: shorter, better conditioned steps), up to `damping_retries` times; after
+    /// the last, the status of the failure is returned.
+    fn solve_with_damping<M: Model<T>>(
+        &mut self,
+        model: &M,
+        s: &Settings<T>,
+        energy: T,
+        report: &mut StepReport<T>,
+    ) -> Result<Option<StepStatus>, SolverError> {
+        let mut gamma = T::ZERO;
+        let mut retry = 0;
+        loop {
+            let failed = if self.factor_and_solve(s, report) {
+                if !s.line_search {
+                    self.set_trial(T::ONE);
+                    report.constraint_residual = None;
+                    return Ok(None);
+                }
+                if self.search(model, s, energy, report)? {
+                    return Ok(None);
+                }
+                StepStatus::LineSearchFailed
+            } else {
+                StepStatus::NumericalFailure
+            };
+            if retry == s.damping_retries {
+                return Ok(Some(failed));
+            }
+            retry += 1;
+            report.damping_retries = retry;
+            gamma = self.damp(gamma, s.time_step);
+        }
+    }
+
+    /// Factorizes the assembled KKT system (with inertia correction) and solves it with
+    /// refinement into `solution`; `true` when the factorization succeeded and the solution
+    /// is finite.
+    fn factor_and_solve(&mut self, s: &Settings<T>, report: &mut StepReport<T>) -> bool {
+        let (outcome, shift) = self
+            .kkt
+            .factorize_with_inertia_correction(s.pivot_epsilon, s.regularization);
+        if shift > report.hessian_shift {
+            report.hessian_shift = shift;
+        }
+        self.factored = matches!(outcome, FactorOutcome::Factored { .. });
+        let FactorOutcome::Factored { regularized, .. } = outcome else {
+            return false;
+        };
+        report.regularized_pivots += regularized;
+        let refinement = self.kkt.solve_refined(
+            &mut self.solution,
+            &self.rhs,
+            s.refinement_steps,
+            s.refinement_tolerance,
+        );
+        report.iterations += 1;
+        report.refinement_steps += refinement.steps;
+        let solved =
+            refinement.relative_residual.is_finite() && max_abs(&self.solution).is_finite();
+        if solved && refinement.relative_residual > report.linear_residual {
+            report.linear_residual = refinement.relative_residual;
+        }
+        solved
+    }
+
+    /// Makes the accepted trial point the iterate and takes its multipliers $\lambda^+$.
+    fn accept(&mut self) {
+        core::mem::swap(&mut self.x, &mut self.trial);
+        let (_, lambda) = self.solution.split_at(self.kkt.pattern.dofs);
+        self.lambda.copy_from_slice(lambda);
+    }
+
+    /// The optional residual check after the last Newton iteration: evaluates the first
+    /// derivatives at the final iterate and records its residual. `None` (status set) when
+    /// the evaluation is non-finite, else whether the residual is within the tolerance.
+    fn final_residual<M: Model<T>>(
+        &mut self,
+        model: &M,
+        s: &Settings<T>,
+        report: &mut StepReport<T>,
+    ) -> Result<Option<bool>, SolverError> {
+        let h = s.time_step;
+        let e = self.evaluate(model, h, false, Derivatives::First)?;
+        if !e.finite {
+            report.status = StepStatus::NumericalFailure;
+            return Ok(None);
+        }
+        self.fill_rhs(h);
+        let residual = self.residual(h);
+        report.residual = Some(residual);
+        report.constraint_residual = Some(max_abs(&self.constraint));
+        Ok(Some(residual <= s.tolerance))
+    }
 }
 
 /// `x[node] += alpha * v[d]` along the axis of every free coordinate `d`.
@@ -493,15 +419,6 @@ fn add_to<T: Real>(x: &mut [T::Vec3], coordinate_of: &[u32], v: &[T], alpha: T) 
         let (node, axis) = (c as usize / 3, c as usize % 3);
         x[node] += T::Vec3::AXES[axis] * (alpha * v[d]);
     }
-}
-
-/// $\lVert v\rVert_2$.
-fn norm2<T: Real>(v: &[T]) -> T {
-    let mut sum = T::ZERO;
-    for &x in v {
-        sum += x * x;
-    }
-    math::sqrt(sum)
 }
 
 impl<T: Real> Workspace<T> {
@@ -619,95 +536,6 @@ impl<T: Real> Workspace<T> {
             }
         }
         worst
-    }
-
-    /// Backtracks from $\alpha = 1$ along the solved direction until the merit
-    /// $\psi = E + \mu\lVert C\rVert_2$ does not increase (module docs); the accepted point is
-    /// left in `trial` and its $C$ in `constraint`. `energy` is $E$ at the iterate, whose $C$
-    /// is in `constraint` on entry.
-    fn line_search<M: Model<T>>(
-        &mut self,
-        model: &M,
-        h: T,
-        energy: T,
-        max_halvings: u32,
-        soc: bool,
-        slack: T,
-    ) -> Result<LineSearch<T>, SolverError> {
-        let dofs = self.kkt.pattern.dofs;
-        let mu = T::from_f64(1.1) * norm2(&self.solution[dofs..]);
-        let mu = if mu > T::from_f64(0.05) {
-            mu
-        } else {
-            T::from_f64(0.05)
-        };
-        let theta0 = norm2(&self.constraint);
-        let before = energy + mu * theta0;
-        // Changes below the rounding noise count as no increase, so that a step at
-        // convergence is not refused for noise.
-        let noise = |v: T| v + T::from_f64(16.0) * T::EPSILON * if v < T::ZERO { -v } else { v };
-        let (ceiling, energy_ceiling) = (noise(before), noise(energy));
-        // The exact-penalty test, or (with a slack) the filter test: a violation within the
-        // slack is allowed if the energy does not rise or the violation falls by a tenth.
-        let accept = |e: T, theta: T| {
-            let merit = e + mu * theta;
-            let penalty = merit <= ceiling;
-            let filter = slack > T::ZERO
-                && theta <= slack
-                && (e <= energy_ceiling || theta <= T::from_f64(0.9) * theta0);
-            (merit.is_finite() && (penalty || filter)).then_some(merit)
-        };
-        let mut alpha = T::ONE;
-        let mut second_order = false;
-        for halvings in 0..=max_halvings {
-            self.set_trial(alpha);
-            let t = self.evaluate(model, h, true, Derivatives::None)?;
-            if let Some(merit) = accept(t.energy, norm2(&self.constraint)).filter(|_| t.finite) {
-                return Ok(LineSearch {
-                    before,
-                    after: Some(merit),
-                    halvings,
-                    second_order,
-                });
-            }
-            if halvings == 0 && soc && t.finite {
-                // Second-order correction (Nocedal & Wright, Alg. 18.3): the full step is
-                // often refused only because C grew to second order along it (the Maratos
-                // effect); one more solve with the same factor,
-                // [A J^T; J 0] [d; mu] = [0; -C(x + dx)], pulls the trial back towards C = 0.
-                let dofs = self.kkt.pattern.dofs;
-                self.rhs[..dofs].iter_mut().for_each(|r| *r = T::ZERO);
-                for (r, &c) in self.rhs[dofs..].iter_mut().zip(&self.constraint) {
-                    *r = -c;
-                }
-                self.kkt
-                    .solve_refined(&mut self.product, &self.rhs, 0, T::ZERO);
-                add_to(
-                    &mut self.trial,
-                    &self.kkt.pattern.coordinate_of,
-                    &self.product,
-                    T::ONE,
-                );
-                let t = self.evaluate(model, h, true, Derivatives::None)?;
-                second_order = true;
-                if let Some(merit) = accept(t.energy, norm2(&self.constraint)).filter(|_| t.finite)
-                {
-                    return Ok(LineSearch {
-                        before,
-                        after: Some(merit),
-                        halvings,
-                        second_order,
-                    });
-                }
-            }
-            alpha *= T::HALF;
-        }
-        Ok(LineSearch {
-            before,
-            after: None,
-            halvings: max_halvings,
-            second_order,
-        })
     }
 
     /// Raises the inertia damping from `gamma` to the next of $1, 10, 100, \dots$: the

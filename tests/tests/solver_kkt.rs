@@ -41,12 +41,12 @@ fn solve<T: Real>(
 /// Independent residual check: $\lVert Kz - b\rVert_\infty / \lVert b\rVert_\infty$ in f64 from
 /// the stored upper triangle.
 fn residual_f64<T: Real>(kkt: &Kkt<T>, z: &[T], b: &[T]) -> f64 {
-    let p = &kkt.pattern;
+    let p = kkt.pattern();
     let mut r: Vec<f64> = b.iter().map(|v| v.to_f64()).collect();
     for c in 0..p.order() {
-        for s in p.col_ptr[c] as usize..p.col_ptr[c + 1] as usize {
-            let row = p.row_idx[s] as usize;
-            let v = kkt.values[s].to_f64();
+        for s in p.col_ptr()[c] as usize..p.col_ptr()[c + 1] as usize {
+            let row = p.row_idx()[s] as usize;
+            let v = kkt.values()[s].to_f64();
             r[row] -= v * z[c].to_f64();
             if row != c {
                 r[c] -= v * z[row].to_f64();
@@ -61,10 +61,10 @@ fn residual_f64<T: Real>(kkt: &Kkt<T>, z: &[T], b: &[T]) -> f64 {
 /// rows spread over six decades.
 fn rescale_rows(kkt: &mut Kkt<f32>, rhs: &mut [f32]) {
     let scale = |i: usize| 10f32.powi((i % 7) as i32 - 3);
-    for c in 0..kkt.pattern.order() {
-        for s in kkt.pattern.col_ptr[c] as usize..kkt.pattern.col_ptr[c + 1] as usize {
-            let r = kkt.pattern.row_idx[s] as usize;
-            kkt.values[s] *= scale(r) * scale(c);
+    for c in 0..kkt.pattern().order() {
+        for s in kkt.pattern().col_ptr()[c] as usize..kkt.pattern().col_ptr()[c + 1] as usize {
+            let r = kkt.pattern().row_idx()[s] as usize;
+            kkt.values_mut()[s] *= scale(r) * scale(c);
         }
     }
     for (i, b) in rhs.iter_mut().enumerate() {
@@ -90,8 +90,8 @@ fn refactor_on_reused_symbolic_equals_fresh_analysis() {
     let mut fresh = Solver::new(Settings::default()).unwrap();
     let (kkt_fresh, _, z_fresh, _) = solve(&mut fresh, &sheet, &second);
 
-    let l_diff = max_rel(&kkt_fresh.factor.l, &kkt_reused.factor.l);
-    let d_diff = max_rel(&kkt_fresh.factor.d, &kkt_reused.factor.d);
+    let l_diff = max_rel(kkt_fresh.factor().l(), kkt_reused.factor().l());
+    let d_diff = max_rel(kkt_fresh.factor().d(), kkt_reused.factor().d());
     let z_diff = max_rel(&z_fresh, &z_reused);
     println!("reused vs fresh: L {l_diff:.1e}, D {d_diff:.1e}, solution {z_diff:.1e}");
     assert!(l_diff <= 1e-12 && d_diff <= 1e-12 && z_diff <= 1e-12);
@@ -106,15 +106,15 @@ fn dog_kkt_residual_f64() {
         let r = residual_f64(&kkt, &z, &rhs);
         println!(
             "f64 seed {seed}: n = {}, residual {r:.2e} (reported {reported:.2e})",
-            kkt.pattern.order()
+            kkt.pattern().order()
         );
         assert_eq!(
-            kkt.pattern.dofs,
+            kkt.pattern().dofs(),
             3 * 12 * 9 - 3 * 9,
             "three coordinates per free vertex"
         );
         assert_eq!(
-            kkt.pattern.rows,
+            kkt.pattern().rows(),
             3 * 10 * 7 + 2 * (10 + 7),
             "DOG rows of a 12x9 grid"
         );
@@ -140,9 +140,9 @@ fn matrix_market_export_reads_back() {
     let mut solver = Solver::new(Settings::default()).unwrap();
     let (kkt, _, z, _) = solve(&mut solver, &sheet, &state);
     let mut text = String::new();
-    write_matrix_market(&mut text, &kkt.pattern, &kkt.values).unwrap();
+    write_matrix_market(&mut text, kkt.pattern(), kkt.values()).unwrap();
     let coo = nalgebra_sparse::io::load_coo_from_matrix_market_str::<f64>(&text).unwrap();
-    assert_eq!(coo.nrows(), kkt.pattern.order());
+    assert_eq!(coo.nrows(), kkt.pattern().order());
     // Multiply with what was read (expanded symmetric) and with the solver's own product.
     let mut read_back = vec![0.0; coo.nrows()];
     for (r, c, v) in coo.triplet_iter() {
