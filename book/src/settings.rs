@@ -124,14 +124,14 @@ pub struct BookSettings<T: Real> {
     pub max_corrections: u32,
     /// Contact spring stiffness per unit of node mass ($s^{-2}$): a node pushed out of a
     /// block, the cover or the table in one step is held on that surface by a
-    /// [`folio_kernels::contact::ContactPlane`] spring of stiffness $k = s\,m$ in the next, so
+    /// [`folio_kernels::contact::ContactPlane`] spring of stiffness $k = s\thinspace m$ in the next, so
     /// that the step carries the contact force instead of re-penetrating by $F h^2 / m$
     /// every frame (a resting node then sinks by $g / s$). 0 switches the springs off.
     /// The springs hold for one step whatever the direction, so a node that should lift off
     /// by less than the rounding noise of its coordinates ($\approx \varepsilon W$, $W$ the
-    /// page width) stays: the spring's adhesion $k\,\varepsilon W$ must be small next to the
+    /// page width) stays: the spring's adhesion $k\thinspace \varepsilon W$ must be small next to the
     /// node's weight $m g$, i.e. $s \ll g / (\varepsilon W)$. Default $10^6$ in `f64`
-    /// (adhesion $\approx 10^{-9}\,m g$) and $4 \cdot 10^4$ in `f32` ($\approx 0.006\,m g$;
+    /// (adhesion $\approx 10^{-9}\thinspace m g$) and $4 \cdot 10^4$ in `f32` ($\approx 0.006\thinspace m g$;
     /// at $10^6$ the f32 page sticks to its block and the page turn fails).
     pub contact_stiffness: T,
     /// Weight multiplier of the nodes a collision pushed in this step during the projection

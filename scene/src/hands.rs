@@ -4,7 +4,7 @@
 //!
 //! **Pose.** A hand's centre $c_0$ is the mean of its fingers' grabbed points $p_k$ (3D, on
 //! the flat sheet at $(u, v, 0)$). Over its segments, in time order, the hand translates by
-//! $\Delta c(t) = \sum_s v_s\, d_s(t)$ and turns by $R(t) = \prod_s \exp([\omega_s]_\times
+//! $\Delta c(t) = \sum_s v_s\thinspace d_s(t)$ and turns by $R(t) = \prod_s \exp([\omega_s]_\times
 //! d_s(t))$ (later segments on the left), with $d_s(t)$ the time of segment $s$ elapsed by
 //! $t$; finger $k$ is at $c_0 + \Delta c(t) + R(t)(p_k - c_0)$: the spin turns the fingers
 //! about the moving centre. Times are simulated seconds: frame $f$ (one step of
@@ -216,7 +216,7 @@ pub fn default_frames(hands: &[Spanned<HandSpec>], time_step: f64) -> Result<u32
     Ok(frames.clamp(1.0, 1_000_000.0) as u32)
 }
 
-/// $\exp([\omega]_\times\, d)$ by Rodrigues' formula (the identity for no turn).
+/// $\exp([\omega]_\times\thinspace d)$ by Rodrigues' formula (the identity for no turn).
 fn rotation(spin: [f64; 3], d: f64) -> Rotation {
     let norm = (spin[0] * spin[0] + spin[1] * spin[1] + spin[2] * spin[2]).sqrt();
     let angle = norm * d;

@@ -1,7 +1,7 @@
 //! Numeric $LDL^\top$ of the quasi-definite KKT matrix on a reused [`Symbolic`] analysis,
 //! with sign-aware dynamic regularization, and the triangular solves.
 //!
-//! Up-looking: row $k$ of $L$ solves $L_{0:k,0:k}\, y = A_{0:k,k}$ over the row's
+//! Up-looking: row $k$ of $L$ solves $L_{0:k,0:k}\thinspace y = A_{0:k,k}$ over the row's
 //! precomputed nonzero columns, $L_{kj} = y_j / d_j$, $d_k = a_{kk} - \sum_j L_{kj} y_j$.
 //! The expected pivot sign $s_k$ is known (+ primal, − constraint row); a pivot with
 //! $s_k d_k \le \epsilon$ is replaced by $s_k \delta$ and counted. The factor is then that of
@@ -105,7 +105,7 @@ impl<T: Real> Ldlt<T> {
 
     /// Factorizes the KKT values `kkt` (indexed by the pattern's slots, `nnz` of the
     /// pattern). Pivot $k$ (new order) with $s_k d_k \le$ `epsilon * scale[k]` becomes
-    /// $s_k\,$`delta * scale[k]`; `scale` has $n$ entries.
+    /// $s_k\thinspace $`delta * scale[k]`; `scale` has $n$ entries.
     ///
     /// # Errors
     /// [`SolverError::SymbolicMismatch`] when `symbolic` is not the analysis this factor was

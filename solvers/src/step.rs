@@ -4,15 +4,15 @@
 //! With $\bar x = x^{(k-1)} + h v^{(k-1)}$ the step solves
 //! $\min_x E(x) = \tfrac{1}{2h^2}(x-\bar x)^\top M (x-\bar x) + V(x)$ s.t. $C(x) = 0$ by Newton
 //! on its KKT conditions, starting from $x^{(k-1)}$ and $\lambda = 0$:
-//! $$\begin{bmatrix} M/h^2 + \nabla^2 V\ (+\textstyle\sum_l\lambda_l\nabla^2 C_l) & \nabla C^\top \\ \nabla C & 0\end{bmatrix}
-//! \begin{bmatrix}\Delta x \\ \lambda^+\end{bmatrix} = -\begin{bmatrix} M/h^2(x-\bar x) + \nabla V \\ C(x)\end{bmatrix},$$
+//! $$\begin{bmatrix} M/h^2 + \nabla^2 V\ (+\textstyle\sum_l\lambda_l\nabla^2 C_l) & \nabla C^\top \cr \nabla C & 0\end{bmatrix}
+//! \begin{bmatrix}\Delta x \cr \lambda^+\end{bmatrix} = -\begin{bmatrix} M/h^2(x-\bar x) + \nabla V \cr C(x)\end{bmatrix},$$
 //! optionally backtracking on $\psi = E + \mu\lVert C\rVert_2$, $\mu = \max(1.1\lVert\lambda^+\rVert_2, 0.05)$,
 //! at most `max_halvings` times, then $v = (x - x^{(k-1)})/h$.
 //!
 //! The penalty uses $\lVert\lambda^+\rVert_2$, not the $\max|\lambda^+|$ that DESIGN.md quotes
 //! from RHS19: the Newton direction is a descent direction of the $\ell_2$ merit when
 //! $\mu \ge \lVert\lambda^+\rVert_2$ (the dual norm of $\ell_2$), because
-//! $D\psi \le -\Delta x^\top B\, \Delta x + \lambda^{+\top} C - \mu\lVert C\rVert_2$. With many
+//! $D\psi \le -\Delta x^\top B\thinspace \Delta x + \lambda^{+\top} C - \mu\lVert C\rVert_2$. With many
 //! active constraints $\max|\lambda|$ is several times too small and the search fails (seen on
 //! the hanging chain). A trial whose merit exceeds $\psi$ by at most $16\varepsilon|\psi|$
 //! (rounding noise at convergence) is accepted.

@@ -176,7 +176,7 @@ impl<T: Real> Workspace<T> {
 
     /// Second-order correction (Nocedal & Wright, Alg. 18.3): the full step is often refused
     /// only because $C$ grew to second order along it (the Maratos effect); one more solve
-    /// with the same factor, $[A\ J^\top; J\ 0]\,[d; \mu] = [0; -C(x + \Delta x)]$, pulls
+    /// with the same factor, $[A\ J^\top; J\ 0]\thinspace [d; \mu] = [0; -C(x + \Delta x)]$, pulls
     /// the trial (whose $C$ is in `constraint`) back towards $C = 0$.
     fn second_order_correction(&mut self) {
         let dofs = self.kkt.pattern.dofs;

@@ -28,8 +28,8 @@ impl<T: Real> Solver<T> {
     /// Pulls `state` back onto the constraints after a step and anything done to it since
     /// (collision projection): the mass-weighted closest point on $C(x) = 0$, found by
     /// Gauss-Newton iterations with the Jacobian re-evaluated at each iterate,
-    /// $$\begin{bmatrix} W & J(x)^\top \\ J(x) & 0\end{bmatrix}\begin{bmatrix}\delta \\ \mu\end{bmatrix}
-    ///   = \begin{bmatrix} 0 \\ -C(x)\end{bmatrix},\qquad x \mathrel{+}= \delta,\ v \mathrel{+}= \delta / h,$$
+    /// $$\begin{bmatrix} W & J(x)^\top \cr J(x) & 0\end{bmatrix}\begin{bmatrix}\delta \cr \mu\end{bmatrix}
+    ///   = \begin{bmatrix} 0 \cr -C(x)\end{bmatrix},\qquad x \mathrel{+}= \delta,\ v \mathrel{+}= \delta / h,$$
     /// with $W = M/h^2$ except on the nodes flagged in `pinned`, whose weight is multiplied by
     /// `pin_weight` so that they barely move (contact points stay on the surface that pushed
     /// them). This is the fast projection of Goldenthal et al. 2007; each iteration costs one
