@@ -284,6 +284,7 @@ pub fn run(
             }
             ModelKind::Dog => dog = Some(DogPage::new(book_settings(scene)).map_err(fail)?),
             ModelKind::Sheet => return Err(fail("a sheet is held by hands")),
+            other => return Err(fail(format!("no touch run for the {} model", other.name()))),
         }
         let page: &mut dyn PageModel<f64> = match (&mut dog, &mut other) {
             (Some(d), _) => d,

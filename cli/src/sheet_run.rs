@@ -82,6 +82,7 @@ fn edit_name(edit: Edit) -> &'static str {
         Edit::Moved => "moved",
         Edit::Split => "split",
         Edit::Separated => "separated",
+        _ => "other",
     }
 }
 

@@ -2,6 +2,7 @@
 
 /// What a fixture drives.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Kind {
     /// Camera rays on the whole book (`folio_book::Script`): DOG scenes.
     Book,

@@ -114,6 +114,7 @@ impl TearStart {
 /// The page models (issue 5's interface).
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "kebab-case")]
+#[non_exhaustive]
 pub enum ModelKind {
     /// The DOG book of seed 000 (page blocks, cover, active page).
     Dog,

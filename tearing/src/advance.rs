@@ -19,6 +19,7 @@ use folio_kernels::Real;
 
 /// How the mesh changed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Edit {
     /// The tip slid on (Fig. 8, right); no topology change.
     Moved,
