@@ -13,6 +13,11 @@ use folio_kernels::{Constraint, Potential, Real};
 use folio_solvers::model::{ConstraintSet, PotentialSet, TermVisitor};
 
 /// Which effects the book simulates. [`Effects::default`] is all of them.
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(default, deny_unknown_fields)
+)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Effects {
     /// Gravity on blocks, cover and page (seed `000_…` eq. 12). Off: no gravity term.

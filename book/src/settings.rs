@@ -74,6 +74,18 @@ impl<T: Real> Default for Weights<T> {
 }
 
 /// Everything that defines a simulated book.
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(
+        default,
+        deny_unknown_fields,
+        bound(
+            serialize = "T: serde::Serialize",
+            deserialize = "T: folio_kernels::Real + serde::Deserialize<'de>"
+        )
+    )
+)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BookSettings<T: Real> {
     /// Page counts, page size and thickness, cover, midline resolution.

@@ -41,6 +41,18 @@ use folio_kernels::{Real, Vec3Ops, math};
 use super::{PageError, PageModel, PageStatus, PageStep, check_finger, check_grab, material_point};
 
 /// Settings of the cone page (module docs). Lengths in page units, angles in radians.
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(
+        default,
+        deny_unknown_fields,
+        bound(
+            serialize = "T: serde::Serialize",
+            deserialize = "T: folio_kernels::Real + serde::Deserialize<'de>"
+        )
+    )
+)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ConeSettings<T> {
     /// Page width $W$.

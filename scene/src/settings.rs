@@ -99,3 +99,52 @@ fn set<V: Copy>(field: &mut V, value: Option<&toml::Spanned<V>>) {
         *field = *v.get_ref();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use folio_book::BookSettings;
+    use folio_pages::cone::ConeSettings;
+    use folio_pages::spring::SpringSettings;
+    use folio_tearing::sheet::SheetSettings;
+    use serde::Serialize;
+    use serde::de::DeserializeOwned;
+
+    /// `value` written as TOML and read back.
+    fn round_trip<S: Serialize + DeserializeOwned>(value: &S) -> S {
+        let text = toml::to_string(value).expect("serializes");
+        toml::from_str(&text).unwrap_or_else(|e| panic!("{e}\n{text}"))
+    }
+
+    #[test]
+    fn every_settings_type_reads_back_what_it_writes() {
+        let mut book = BookSettings::<f64>::default();
+        book.weights.glue = 321.0;
+        book.solver.newton_iterations = 2;
+        book.effects.bookmarking = false;
+        assert_eq!(round_trip(&book), book);
+        let mut spring = SpringSettings::<f32>::default();
+        spring.substeps = 3;
+        assert_eq!(round_trip(&spring), spring);
+        let cone = ConeSettings::<f64>::default();
+        assert_eq!(round_trip(&cone), cone);
+        let mut sheet = SheetSettings::<f64>::default();
+        sheet.tearing.fibers.seed = 99;
+        assert_eq!(round_trip(&sheet), sheet);
+    }
+
+    #[test]
+    fn omitted_keys_keep_the_defaults_and_unknown_keys_are_refused() {
+        let book: BookSettings<f64> =
+            toml::from_str("quads_across = 12\n[solver]\ntime_step = 0.01\n")
+                .expect("a partial book");
+        let defaults = BookSettings::<f64>::default();
+        assert_eq!(
+            (book.quads_across, book.quads_along),
+            (12, defaults.quads_along)
+        );
+        assert_eq!(book.solver.time_step, 0.01);
+        assert_eq!(book.weights, defaults.weights);
+        let e = toml::from_str::<SpringSettings<f64>>("stiffness = 1.0\n").expect_err("unknown");
+        assert!(e.message().contains("unknown field `stiffness`"), "{e}");
+    }
+}

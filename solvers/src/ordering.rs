@@ -42,6 +42,11 @@ use faer::sparse::linalg::amd;
 use crate::pattern::{KktPattern, NONE};
 
 /// Which elimination order the symbolic analysis uses.
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Ordering {

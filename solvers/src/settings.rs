@@ -6,6 +6,18 @@ use crate::error::SolverError;
 use crate::ordering::Ordering;
 
 /// Step settings: a plain struct; [`Settings::validate`] checks it (the solver does too).
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(
+        default,
+        deny_unknown_fields,
+        bound(
+            serialize = "T: serde::Serialize",
+            deserialize = "T: folio_kernels::Real + serde::Deserialize<'de>"
+        )
+    )
+)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings<T> {
     /// Time step $h$ in seconds; finite, $> 0$. Default $1/60$.

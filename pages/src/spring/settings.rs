@@ -23,6 +23,11 @@ pub const MAX_SUBSTEPS: u32 = 64;
 pub const MAX_KEY_FRAMES: usize = 1_000_000;
 
 /// How a grab holds the page.
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Grip {
@@ -43,6 +48,11 @@ pub enum Grip {
 }
 
 /// The time integrator of the free particles.
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Integrator {
@@ -60,6 +70,18 @@ pub enum Integrator {
 
 /// Settings of a [`super::SpringPage`] (module docs for units); [`SpringSettings::validate`]
 /// checks them.
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(
+        default,
+        deny_unknown_fields,
+        bound(
+            serialize = "T: serde::Serialize",
+            deserialize = "T: folio_kernels::Real + serde::Deserialize<'de>"
+        )
+    )
+)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SpringSettings<T> {
     /// Particles across the page, $n_x$, in $[2, 64]$ ([`MAX_PARTICLES_PER_SIDE`]).
