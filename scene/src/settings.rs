@@ -122,8 +122,10 @@ mod tests {
         book.solver.newton_iterations = 2;
         book.effects.bookmarking = false;
         assert_eq!(round_trip(&book), book);
-        let mut spring = SpringSettings::<f32>::default();
-        spring.substeps = 3;
+        let spring = SpringSettings::<f32> {
+            substeps: 3,
+            ..SpringSettings::default()
+        };
         assert_eq!(round_trip(&spring), spring);
         let cone = ConeSettings::<f64>::default();
         assert_eq!(round_trip(&cone), cone);
