@@ -12,17 +12,10 @@ use folio_solvers::settings::Settings;
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
-    serde(
-        default,
-        deny_unknown_fields,
-        bound(
-            serialize = "T: serde::Serialize",
-            deserialize = "T: folio_kernels::Real + serde::Deserialize<'de>"
-        )
-    )
+    serde(default, deny_unknown_fields)
 )]
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Weights<T> {
+pub struct Weights<T: Real> {
     /// $w_{\mathrm{bend3D}}$, DOG-Laplacian bending of the active page (120).
     pub bend_page: T,
     /// $w_{\mathrm{bend2D}}$, curve-Laplacian bending of the block midlines (200).
@@ -35,7 +28,7 @@ pub struct Weights<T> {
     pub pull: T,
 }
 
-impl<T: Copy> Weights<T> {
+impl<T: Real> Weights<T> {
     /// Every weight with its path from [`BookSettings`] (`"weights.glue"`), in field order.
     #[must_use]
     pub fn named(&self) -> [(&'static str, T); 5] {
@@ -50,7 +43,7 @@ impl<T: Copy> Weights<T> {
 
     /// The same weights in another precision (or any other map of each weight).
     #[must_use]
-    pub fn map<U>(self, f: impl Fn(T) -> U) -> Weights<U> {
+    pub fn map<U: Real>(self, f: impl Fn(T) -> U) -> Weights<U> {
         Weights {
             bend_page: f(self.bend_page),
             bend_blocks: f(self.bend_blocks),
@@ -77,14 +70,7 @@ impl<T: Real> Default for Weights<T> {
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
-    serde(
-        default,
-        deny_unknown_fields,
-        bound(
-            serialize = "T: serde::Serialize",
-            deserialize = "T: folio_kernels::Real + serde::Deserialize<'de>"
-        )
-    )
+    serde(default, deny_unknown_fields)
 )]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BookSettings<T: Real> {

@@ -44,17 +44,10 @@ use super::{PageError, PageModel, PageStatus, PageStep, check_finger, check_grab
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
-    serde(
-        default,
-        deny_unknown_fields,
-        bound(
-            serialize = "T: serde::Serialize",
-            deserialize = "T: folio_kernels::Real + serde::Deserialize<'de>"
-        )
-    )
+    serde(default, deny_unknown_fields)
 )]
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ConeSettings<T> {
+pub struct ConeSettings<T: Real> {
     /// Page width $W$.
     pub width: T,
     /// Page height $H$.

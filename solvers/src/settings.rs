@@ -9,17 +9,10 @@ use crate::ordering::Ordering;
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
-    serde(
-        default,
-        deny_unknown_fields,
-        bound(
-            serialize = "T: serde::Serialize",
-            deserialize = "T: folio_kernels::Real + serde::Deserialize<'de>"
-        )
-    )
+    serde(default, deny_unknown_fields)
 )]
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Settings<T> {
+pub struct Settings<T: Real> {
     /// Time step $h$ in seconds; finite, $> 0$. Default $1/60$.
     pub time_step: T,
     /// Newton iterations per step, $\ge 1$. Default 1 (seed `000_…` eq. 4).

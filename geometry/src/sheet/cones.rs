@@ -69,17 +69,10 @@ pub enum Region {
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
-    serde(
-        default,
-        deny_unknown_fields,
-        bound(
-            serialize = "T: serde::Serialize",
-            deserialize = "T: folio_kernels::Real + serde::Deserialize<'de>"
-        )
-    )
+    serde(default, deny_unknown_fields)
 )]
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ConeSettings<T> {
+pub struct ConeSettings<T: Real> {
     /// Curvature magnitude (1 / sheet unit) below which a triangle is flat.
     pub flat_curvature: T,
     /// Improvement in $|\cos|$ between the edge and the ruling that a flip needs, in

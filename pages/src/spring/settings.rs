@@ -73,17 +73,10 @@ pub enum Integrator {
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
-    serde(
-        default,
-        deny_unknown_fields,
-        bound(
-            serialize = "T: serde::Serialize",
-            deserialize = "T: folio_kernels::Real + serde::Deserialize<'de>"
-        )
-    )
+    serde(default, deny_unknown_fields)
 )]
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SpringSettings<T> {
+pub struct SpringSettings<T: Real> {
     /// Particles across the page, $n_x$, in $[2, 64]$ ([`MAX_PARTICLES_PER_SIDE`]).
     pub particles_across: usize,
     /// Particles along the spine, $n_z$, in $[2, 64]$.

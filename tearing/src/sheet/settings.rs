@@ -46,17 +46,10 @@ impl Default for SheetEffects {
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
-    serde(
-        default,
-        deny_unknown_fields,
-        bound(
-            serialize = "T: serde::Serialize",
-            deserialize = "T: folio_kernels::Real + serde::Deserialize<'de>"
-        )
-    )
+    serde(default, deny_unknown_fields)
 )]
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SheetSettings<T> {
+pub struct SheetSettings<T: Real> {
     /// Pattern width $W$ (sheet units).
     pub width: T,
     /// Pattern height $H$ (sheet units).
