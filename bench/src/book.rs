@@ -2,14 +2,15 @@
 
 use std::time::Instant;
 
-use folio_book::{Book, BookSettings, Script};
+use folio_book::{Book, BookSettings, BookStepReport, Script};
+use folio_kernels::Real;
 
 /// The page-turn fixture (750 frames at 60 fps).
 pub const PAGE_TURN: &str = include_str!("../../tests/fixtures/page_turn.input");
 
 /// What one play of a fixture measured.
 #[derive(Clone, Debug, Default)]
-pub struct Play {
+pub struct Play<T = f64> {
     /// Wall time of every frame's step (input applied before it), seconds.
     pub step_seconds: Vec<f64>,
     /// Mean over frames with an active page of the maximum edge stretch.
@@ -22,16 +23,35 @@ pub struct Play {
     pub active_frames: usize,
     /// Pages left, right and held at the end.
     pub final_pages: [u32; 3],
+    /// Every step's report.
+    pub reports: Vec<BookStepReport<T>>,
 }
 
-/// Plays `script` on a new book with `settings`, timing each step.
+/// Plays `script` on a new `f64` book with `settings`, timing each step.
 ///
 /// # Panics
 /// On a book or input the fixture should never produce (a bench harness).
 #[must_use]
 pub fn play(settings: BookSettings<f64>, script: &Script) -> Play {
+    play_in(settings, script)
+}
+
+/// [`play`] in the precision `T`.
+///
+/// # Panics
+/// As [`play`].
+#[must_use]
+pub fn play_in<T: Real>(settings: BookSettings<T>, script: &Script) -> Play<T> {
     let mut book = Book::new(settings).expect("book");
-    let mut out = Play::default();
+    let mut out = Play {
+        step_seconds: Vec::new(),
+        max_stretch_mean: 0.0,
+        rms_stretch_mean: 0.0,
+        dog_max: 0.0,
+        active_frames: 0,
+        final_pages: [0; 3],
+        reports: Vec::new(),
+    };
     let (mut max_sum, mut rms_sum) = (0.0, 0.0);
     for frame in 0..script.frames {
         for e in script.events_at(frame) {
@@ -39,13 +59,15 @@ pub fn play(settings: BookSettings<f64>, script: &Script) -> Play {
                 .expect("input");
         }
         let t = Instant::now();
-        book.step().expect("step");
+        let report = book.step().expect("step");
         out.step_seconds.push(t.elapsed().as_secs_f64());
+        out.reports.push(report);
         if let Some((max, rms)) = book.stretch() {
             out.active_frames += 1;
-            max_sum += max;
-            rms_sum += rms;
-            out.dog_max = out.dog_max.max(book.dog_residual().unwrap_or(0.0));
+            max_sum += max.to_f64();
+            rms_sum += rms.to_f64();
+            let dog = book.dog_residual().map_or(0.0, Real::to_f64);
+            out.dog_max = out.dog_max.max(dog);
         }
     }
     let c = book.counts();

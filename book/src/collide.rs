@@ -35,6 +35,8 @@ impl<T: Real> Book<T> {
             }
             correction.steps += c.steps;
             correction.after = c.after;
+            correction.factorizations += c.factorizations;
+            correction.solves += c.solves;
             if c.steps == 0 {
                 break;
             }

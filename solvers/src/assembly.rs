@@ -11,6 +11,8 @@ use crate::pattern::{Family, KktPattern, NONE};
 pub(crate) enum Derivatives {
     /// Values only (line search).
     None,
+    /// $\nabla C$ only (the constraint projection).
+    Jacobian,
     /// $\nabla V$ and $\nabla C$ (residual check).
     First,
     /// $\nabla V$, $\nabla C$, $\nabla^2 V$ and, if in the pattern, $\sum_l \lambda_l \nabla^2 C_l$.
@@ -96,7 +98,7 @@ impl<T: Real> TermVisitor<T> for Assemble<'_, T> {
         for (t, term) in set.terms().iter().enumerate() {
             let xs = gather::<T, N>(self.x, &term.nodes);
             self.energy += w * term.kernel.value(&xs);
-            if self.derivatives == Derivatives::None {
+            if matches!(self.derivatives, Derivatives::None | Derivatives::Jacobian) {
                 continue;
             }
             let g = term.kernel.gradient(&xs);

@@ -49,6 +49,8 @@ pub struct Kkt<T> {
     correction: Vec<T>,
     /// The iterate before a refinement step, restored if the step raised the residual.
     previous: Vec<T>,
+    /// Numeric factorizations since [`Kkt::new`].
+    factorizations: u64,
 }
 
 impl<T: Real> Kkt<T> {
@@ -68,7 +70,16 @@ impl<T: Real> Kkt<T> {
             residual: vec![T::ZERO; n],
             correction: vec![T::ZERO; n],
             previous: vec![T::ZERO; n],
+            factorizations: 0,
         }
+    }
+
+    /// Numeric factorizations since this system was made (inertia-correction retries
+    /// included): the figure a caller compares per frame.
+    #[inline]
+    #[must_use]
+    pub fn factorizations(&self) -> u64 {
+        self.factorizations
     }
 
     /// The pattern and its scatter maps.
@@ -125,20 +136,7 @@ impl<T: Real> Kkt<T> {
 
     /// `out = K z` with the full symmetric matrix from its upper triangle.
     pub fn multiply(&self, out: &mut [T], z: &[T]) {
-        out.iter_mut().for_each(|v| *v = T::ZERO);
-        let p = &self.pattern;
-        for c in 0..p.order() {
-            let range = p.col_ptr[c] as usize..p.col_ptr[c + 1] as usize;
-            let mut sum = T::ZERO;
-            for (&r, &v) in p.row_idx[range.clone()].iter().zip(&self.values[range]) {
-                let r = r as usize;
-                out[r] += v * z[c];
-                if r != c {
-                    sum += v * z[r];
-                }
-            }
-            out[c] += sum;
-        }
+        symmetric_product(&self.pattern, &self.values, out, z);
     }
 
     /// $z = K^{-1} b$ with the current factor (through $D$ when equilibrated).
@@ -173,6 +171,7 @@ impl<T: Real> Kkt<T> {
     /// ([`Kkt::primal_scale`]); that of constraint row $c$ is the size of its Schur complement
     /// $J_c H^{-1} J_c^\top \approx \lVert J_c\rVert_2^2 / P$.
     pub fn factorize(&mut self, epsilon_rel: T, delta_rel: T) -> FactorOutcome {
+        self.factorizations += 1;
         let p = &self.pattern;
         let values: &[T] = match &mut self.equilibration {
             Some(e) => {
@@ -304,6 +303,28 @@ impl<T: Real> Kkt<T> {
         let norm = max_abs(&r);
         self.residual = r;
         norm
+    }
+}
+
+/// `out = A z` for the symmetric $A$ stored as its upper triangle `values` on `pattern`.
+pub(crate) fn symmetric_product<T: Real>(
+    pattern: &KktPattern,
+    values: &[T],
+    out: &mut [T],
+    z: &[T],
+) {
+    out.iter_mut().for_each(|v| *v = T::ZERO);
+    for c in 0..pattern.order() {
+        let range = pattern.col_ptr[c] as usize..pattern.col_ptr[c + 1] as usize;
+        let mut sum = T::ZERO;
+        for (&r, &v) in pattern.row_idx[range.clone()].iter().zip(&values[range]) {
+            let r = r as usize;
+            out[r] += v * z[c];
+            if r != c {
+                sum += v * z[r];
+            }
+        }
+        out[c] += sum;
     }
 }
 

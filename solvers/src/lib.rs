@@ -10,6 +10,7 @@
 //!   rebuilt only when the model's topology version changes.
 //! - [`ldlt`], [`kkt`]: the numeric $LDL^\top$ with sign-aware regularization on the reused
 //!   analysis, and the refined solve.
+//! - [`normal_equations`]: $J W^{-1} J^\top$, the constraint projection's reduced system.
 //! - [`step`]: [`Solver::step`], one time step with a [`StepReport`].
 //! - [`matrix_market`]: export of the assembled KKT matrix.
 //! - [`ring`]: [`Ring`], a fixed-capacity history of states (the models' recordings).
@@ -34,6 +35,7 @@ pub mod kkt;
 pub mod ldlt;
 pub mod matrix_market;
 pub mod model;
+pub mod normal_equations;
 pub mod ordering;
 pub mod pattern;
 pub mod report;

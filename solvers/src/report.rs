@@ -34,6 +34,9 @@ pub struct StepReport<T> {
     pub status: StepStatus,
     /// KKT systems solved.
     pub iterations: u32,
+    /// Numeric factorizations of the KKT matrix (inertia-correction and damping retries
+    /// included).
+    pub factorizations: u32,
     /// The eq. 3 residual at the final iterate (see [`crate::Settings::tolerance`]), when it
     /// was evaluated.
     pub residual: Option<T>,
@@ -76,6 +79,7 @@ impl<T: folio_kernels::Real> StepReport<T> {
         Self {
             status,
             iterations: 0,
+            factorizations: 0,
             residual: None,
             constraint_residual: None,
             linear_residual: T::ZERO,

@@ -26,6 +26,7 @@ use crate::error::SolverError;
 use crate::kkt::{Kkt, max_abs};
 use crate::ldlt::FactorOutcome;
 use crate::model::Model;
+use crate::normal_equations::NormalEquations;
 use crate::ordering::Ordering;
 use crate::pattern::KktPattern;
 use crate::report::{StepReport, StepStatus};
@@ -83,6 +84,8 @@ struct Workspace<T: Real> {
     trial: Vec<T::Vec3>,
     /// The numeric factor holds a successful factorization of this topology.
     factored: bool,
+    /// The projection's normal equations $J W^{-1} J^\top$ (analysed with the KKT).
+    normal: NormalEquations<T>,
 }
 
 /// The time stepper: settings, and the symbolic analysis and buffers of the last topology it
@@ -170,6 +173,7 @@ impl<T: Real> Solver<T> {
         self.work = None;
         let pattern = KktPattern::build(model, s.constraint_hessian)?;
         let (dofs, rows, nodes) = (pattern.dofs, pattern.rows, model.node_count());
+        let normal = NormalEquations::new(&pattern);
         let mut kkt = Kkt::new(pattern, s.ordering);
         kkt.set_equilibration(s.equilibrate);
         let n = dofs + rows;
@@ -190,6 +194,7 @@ impl<T: Real> Solver<T> {
             x: vec![T::Vec3::ZERO; nodes],
             trial: vec![T::Vec3::ZERO; nodes],
             factored: false,
+            normal,
         });
         Ok(true)
     }
@@ -356,9 +361,11 @@ impl<T: Real> Workspace<T> {
     /// refinement into `solution`; `true` when the factorization succeeded and the solution
     /// is finite.
     fn factor_and_solve(&mut self, s: &Settings<T>, report: &mut StepReport<T>) -> bool {
+        let before = self.kkt.factorizations();
         let (outcome, shift) = self
             .kkt
             .factorize_with_inertia_correction(s.pivot_epsilon, s.regularization);
+        report.factorizations += (self.kkt.factorizations() - before) as u32;
         if shift > report.hessian_shift {
             report.hessian_shift = shift;
         }

@@ -6,7 +6,6 @@ use super::{Solver, State, Workspace};
 use crate::assembly::Derivatives;
 use crate::error::SolverError;
 use crate::kkt::max_abs;
-use crate::ldlt::FactorOutcome;
 use crate::model::Model;
 use crate::settings::Settings;
 
@@ -22,6 +21,18 @@ pub struct Correction<T> {
     pub before: T,
     /// $\lVert C(x)\rVert_\infty$ after the last accepted one.
     pub after: T,
+    /// Numeric factorizations of the normal equations (0 while the held factor serves).
+    pub factorizations: u32,
+    /// Triangular solves with the normal equations' factor.
+    pub solves: u32,
+}
+
+/// The projection's pinned nodes, their weight factor and its tolerance.
+#[derive(Clone, Copy)]
+struct Pins<'a, T> {
+    nodes: &'a [bool],
+    weight: T,
+    tolerance: T,
 }
 
 impl<T: Real> Solver<T> {
@@ -32,8 +43,11 @@ impl<T: Real> Solver<T> {
     ///   = \begin{bmatrix} 0 \cr -C(x)\end{bmatrix},\qquad x \mathrel{+}= \delta,\ v \mathrel{+}= \delta / h,$$
     /// with $W = M/h^2$ except on the nodes flagged in `pinned`, whose weight is multiplied by
     /// `pin_weight` so that they barely move (contact points stay on the surface that pushed
-    /// them). This is the fast projection of Goldenthal et al. 2007; each iteration costs one
-    /// numeric factorization of the analysed pattern and no allocation. The one-Newton-step
+    /// them). This is the fast projection of Goldenthal et al. 2007. Since $W$ is diagonal,
+    /// each iteration solves the normal equations $J W^{-1} J^\top\mu = C$ instead
+    /// ([`crate::normal_equations::NormalEquations`]: constraint rows only, analysed once per topology, its factor
+    /// held across iterations and calls and refactorized only when refinement with it falls
+    /// short), and allocates nothing. The one-Newton-step
     /// default leaves $C = O(\lVert\Delta x\rVert^2)$ behind, and a collision push of depth
     /// $d$ leaves $C = O(d/\ell)$ (module docs); this removes both. Iterates until
     /// $\lVert C\rVert_\infty \le$ `tolerance` or `max_steps` iterations; each iteration
@@ -57,6 +71,8 @@ impl<T: Real> Solver<T> {
             steps: 0,
             before: T::ZERO,
             after: T::ZERO,
+            factorizations: 0,
+            solves: 0,
         };
         let s = self.settings;
         let h = s.time_step;
@@ -84,9 +100,13 @@ impl<T: Real> Solver<T> {
             return Ok(out);
         }
         out.before = residual;
-        let extra = (pin_weight - T::ONE) / (h * h);
+        let pin = Pins {
+            nodes: pinned,
+            weight: pin_weight,
+            tolerance,
+        };
         while out.steps < max_steps && residual > tolerance {
-            let Some(next) = w.project_once(model, &s, pinned, extra, residual)? else {
+            let Some(next) = w.project_once(model, &s, pin, residual, &mut out)? else {
                 break;
             };
             core::mem::swap(&mut w.x, &mut w.trial);
@@ -105,50 +125,58 @@ impl<T: Real> Solver<T> {
 
 impl<T: Real> Workspace<T> {
     /// One iteration of [`Solver::project_constraints`] from the iterate, whose
-    /// $\lVert C\rVert_\infty$ is `residual`: assembles $J(x)$ and $W$ (the mass diagonal
-    /// over $h^2$, plus `extra` times the mass on `pinned` nodes), factorizes, solves, and
-    /// halves the step until $\lVert C\rVert_\infty$ falls. Returns the new
-    /// $\lVert C\rVert_\infty$ with the point in `trial`, or `None` when the iteration
-    /// cannot lower it.
+    /// $\lVert C\rVert_\infty$ is `residual`: evaluates $J(x)$, sets
+    /// $W = M/h^2$ (times `pin_weight` on `pinned` nodes), solves the normal equations
+    /// $J W^{-1} J^\top \mu = C$ to a linear residual of a quarter of `tolerance`
+    /// ([`crate::normal_equations::NormalEquations`], with its held factor when that suffices), takes
+    /// $\delta = -W^{-1} J^\top\mu$, and halves the step until $\lVert C\rVert_\infty$ falls.
+    /// Returns the new $\lVert C\rVert_\infty$ with the point in `trial`, or `None` when the
+    /// iteration cannot lower it.
     fn project_once<M: Model<T>>(
         &mut self,
         model: &M,
         s: &Settings<T>,
-        pinned: &[bool],
-        extra: T,
+        pin: Pins<'_, T>,
         residual: T,
+        out: &mut Correction<T>,
     ) -> Result<Option<T>, SolverError> {
         let h = s.time_step;
         let dofs = self.kkt.pattern.dofs;
-        // J(x) and the M/h^2 diagonal; the Hessian blocks stay zero.
-        let e = self.evaluate(model, h, false, Derivatives::First)?;
+        let e = self.evaluate(model, h, false, Derivatives::Jacobian)?;
         if !e.finite {
             return Ok(None);
         }
-        for (d, &c) in self.kkt.pattern.coordinate_of.iter().enumerate() {
-            if pinned[c as usize / 3] {
-                self.kkt.values[self.kkt.pattern.diagonal_slot(d)] += self.mass[d] * extra;
-            }
+        let h2 = h * h;
+        for ((w, &m), &c) in self
+            .normal
+            .inverse_w
+            .iter_mut()
+            .zip(&self.mass)
+            .zip(&self.kkt.pattern.coordinate_of)
+        {
+            let weight = if pin.nodes[c as usize / 3] {
+                pin.weight
+            } else {
+                T::ONE
+            };
+            *w = h2 / (m * weight);
         }
-        // No inertia correction: the primal block is the diagonal W, positive by
-        // construction, so a regularized primal pivot here is rounding in the constraint
-        // rows' Schur complement, not an indefinite Hessian, and shifting W would only
-        // refactorize up to `MAX_SHIFTS` more times (measured in f32 on the page turn: the
-        // held frames took 2.5 times as long, same result).
-        let outcome = self.kkt.factorize(s.pivot_epsilon, s.regularization);
-        if !matches!(outcome, FactorOutcome::Factored { .. }) {
+        self.normal.assemble(&self.kkt.pattern, &self.kkt.values);
+        let (delta, mu) = self.solution.split_at_mut(dofs);
+        let solve = self.normal.solve(
+            mu,
+            &self.constraint,
+            T::from_f64(0.25) * pin.tolerance,
+            s.refinement_steps,
+            s.pivot_epsilon,
+            s.regularization,
+        );
+        out.solves += solve.solves;
+        out.factorizations += u32::from(solve.factorized);
+        if solve.failed || !(solve.residual.is_finite() && max_abs(mu).is_finite()) {
             return Ok(None);
         }
-        self.rhs[..dofs].iter_mut().for_each(|r| *r = T::ZERO);
-        for (r, &c) in self.rhs[dofs..].iter_mut().zip(&self.constraint) {
-            *r = -c;
-        }
-        self.kkt.solve_refined(
-            &mut self.solution,
-            &self.rhs,
-            s.refinement_steps,
-            s.refinement_tolerance,
-        );
+        self.normal.back_substitute(delta, mu, &self.kkt.values);
         // Backtrack while max|C| does not fall (on nearly flat DOG stars the remedied
         // Jacobian is not the exact one, and a full step can overshoot).
         let mut alpha = T::ONE;

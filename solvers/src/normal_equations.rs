@@ -1,0 +1,525 @@
+//! The constraint projection's normal equations: the Schur complement
+//! $S = J W^{-1} J^\top$ of a KKT system whose primal block $W$ is diagonal.
+//!
+//! The fast projection (Goldenthal et al. 2007; [`crate::Solver::project_constraints`])
+//! solves
+//! $$\begin{bmatrix} W & J^\top \cr J & 0\end{bmatrix}\begin{bmatrix}\delta \cr \mu\end{bmatrix}
+//!   = \begin{bmatrix} 0 \cr -C\end{bmatrix}$$
+//! with $W$ the diagonal mass matrix over $h^2$. The first row gives
+//! $\delta = -W^{-1} J^\top \mu$; put into the second, it leaves
+//! $$S\mu = C,\qquad S = J W^{-1} J^\top,\qquad \delta = -W^{-1} J^\top \mu,$$
+//! a symmetric positive semidefinite system of the order of the constraint rows alone (301
+//! against the KKT's 677 unknowns on the book's 11×8 page), whose pattern (rows that share
+//! a free coordinate) is analysed once per topology.
+//!
+//! Its factor is held between solves, across the projection's iterations and across
+//! frames. A solve first runs conjugate gradients on the current $S$ preconditioned with
+//! the held factor (each iteration two triangular solves and a product with $S$), and
+//! factorizes only when a few iterations do not reach the caller's target. With the exact
+//! factor one iteration solves, up to the regularization of near-zero pivots.
+//!
+//! Measured on the book's f64 page turn (`cargo run --release -p folio-bench --example
+//! frame_work`): the held factor serves about one projection iteration in ten; for the
+//! rest, three iterations stall or diverge, so $S$ has changed in directions its old
+//! factor does not capture (which rows change, and why, is not measured yet). $S$'s factor has nnz(L) = 10,896 and 0.53 M flops,
+//! against the KKT's 16,756 and 0.68 M in f64's AMD order and 49,875 in f32's delayed-duals
+//! order, and the step's own KKT factor is left untouched.
+//!
+//! The residual of $S\mu = C$ is what the projection leaves of $C$ to first order:
+//! $C(x + \delta) \approx C + J\delta = C - S\mu$. So the caller's target is its
+//! constraint tolerance, not a multiple of the machine epsilon.
+
+use alloc::vec;
+use alloc::vec::Vec;
+use folio_kernels::Real;
+
+use crate::kkt::{max_abs, symmetric_product};
+use crate::ldlt::{FactorOutcome, Ldlt};
+use crate::ordering::Ordering;
+use crate::pattern::KktPattern;
+use crate::symbolic::Symbolic;
+
+/// Most conjugate-gradient iterations a held factor (from an earlier $S$) gets before the
+/// solve refactorizes: each costs two triangular solves and one product with $S$, a
+/// twelfth of a factorization on the book's page (nnz(L) 10,896, nnz(S) 4,599). Where
+/// the held factor serves on the page turn, it does in one to three.
+pub const HELD_ITERATIONS: u32 = 3;
+
+/// How one [`NormalEquations::solve`] went.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NormalSolve<T> {
+    /// $\lVert S\mu - C\rVert_\infty$ of the returned $\mu$.
+    pub residual: T,
+    /// The factorization met a non-finite pivot: $\mu$ is not a solution.
+    pub failed: bool,
+    /// Whether the solve factorized $S$ (the held factor did not reach the target).
+    pub factorized: bool,
+    /// Triangular solves done.
+    pub solves: u32,
+}
+
+/// $S = J W^{-1} J^\top$ for one KKT pattern: its pattern, symbolic analysis, values and a
+/// factor held between solves (module docs).
+///
+/// Owns the transpose of $J$'s structure (one entry per Jacobian slot of the KKT pattern,
+/// two `u32` each, plus `dofs + 1` pointers), the upper pattern of $S$ and its symbolic
+/// analysis, the factor, the values, $W^{-1}$ (one per dof) and seven work vectors of the
+/// row count, all allocated by [`NormalEquations::new`]; nothing else allocates.
+#[derive(Clone, Debug)]
+pub struct NormalEquations<T> {
+    /// Free coordinates of the KKT pattern.
+    dofs: usize,
+    /// Per dof, its Jacobian entries: `dof_ptr[d]..dof_ptr[d + 1]` into `dof_row` (the
+    /// constraint row) and `dof_slot` (the KKT value slot of $J_{row,d}$), rows ascending.
+    dof_ptr: Vec<u32>,
+    dof_row: Vec<u32>,
+    dof_slot: Vec<u32>,
+    /// Upper pattern of $S$ (`rows` unknowns, all with positive pivots).
+    pattern: KktPattern,
+    symbolic: Symbolic,
+    factor: Ldlt<T>,
+    /// Upper values of $S$, in `pattern`'s slots.
+    values: Vec<T>,
+    /// $W^{-1}$ per dof (set by the caller before [`NormalEquations::assemble`]).
+    pub(crate) inverse_w: Vec<T>,
+    /// Dense accumulator of one column of $S$, zero between uses.
+    column: Vec<T>,
+    pivot_scale: Vec<T>,
+    /// The conjugate gradients' residual, preconditioned residual, direction and product.
+    residual: Vec<T>,
+    preconditioned: Vec<T>,
+    direction: Vec<T>,
+    product: Vec<T>,
+    scratch: Vec<T>,
+    /// The factor holds a successful factorization of an earlier $S$.
+    held: bool,
+}
+
+impl<T: Real> NormalEquations<T> {
+    /// Analyses $S$ for the Jacobian block of `kkt` (its constraint columns' primal
+    /// entries): builds $J^\top$'s structure and $S$'s upper pattern, and orders $S$ by AMD.
+    #[must_use]
+    pub fn new(kkt: &KktPattern) -> Self {
+        let (dofs, rows) = (kkt.dofs, kkt.rows);
+        // J transposed: count per dof, then fill column by column (rows come out ascending).
+        let mut dof_ptr = vec![0u32; dofs + 1];
+        for c in 0..rows {
+            for &d in jacobian_rows(kkt, c) {
+                dof_ptr[d as usize + 1] += 1;
+            }
+        }
+        for d in 0..dofs {
+            dof_ptr[d + 1] += dof_ptr[d];
+        }
+        let entries = dof_ptr[dofs] as usize;
+        let (mut dof_row, mut dof_slot) = (vec![0u32; entries], vec![0u32; entries]);
+        let mut fill = dof_ptr.clone();
+        for c in 0..rows {
+            let start = kkt.col_ptr[dofs + c] as usize;
+            for (k, &d) in jacobian_rows(kkt, c).iter().enumerate() {
+                let at = fill[d as usize] as usize;
+                dof_row[at] = c as u32;
+                dof_slot[at] = (start + k) as u32;
+                fill[d as usize] += 1;
+            }
+        }
+        drop(fill);
+        // S's upper column b: rows a <= b sharing a dof with b, ascending, diagonal last.
+        let mut mark = vec![u32::MAX; rows];
+        let mut col_ptr = Vec::with_capacity(rows + 1);
+        col_ptr.push(0u32);
+        let mut row_idx = Vec::new();
+        for b in 0..rows {
+            let start = row_idx.len();
+            mark[b] = b as u32;
+            for &d in jacobian_rows(kkt, b) {
+                let range = dof_ptr[d as usize] as usize..dof_ptr[d as usize + 1] as usize;
+                for &a in &dof_row[range] {
+                    if (a as usize) < b && mark[a as usize] != b as u32 {
+                        mark[a as usize] = b as u32;
+                        row_idx.push(a);
+                    }
+                }
+            }
+            row_idx[start..].sort_unstable();
+            row_idx.push(b as u32);
+            col_ptr.push(row_idx.len() as u32);
+        }
+        drop(mark);
+        row_idx.shrink_to_fit();
+        let pattern = KktPattern {
+            dofs: rows,
+            rows: 0,
+            col_ptr,
+            row_idx,
+            ..KktPattern::default()
+        };
+        let symbolic = Symbolic::analyse(&pattern, Ordering::Amd);
+        Self {
+            dofs,
+            dof_ptr,
+            dof_row,
+            dof_slot,
+            factor: Ldlt::new(&symbolic),
+            values: vec![T::ZERO; pattern.nnz()],
+            symbolic,
+            pattern,
+            inverse_w: vec![T::ZERO; dofs],
+            column: vec![T::ZERO; rows],
+            pivot_scale: vec![T::ONE; rows],
+            residual: vec![T::ZERO; rows],
+            preconditioned: vec![T::ZERO; rows],
+            direction: vec![T::ZERO; rows],
+            product: vec![T::ZERO; rows],
+            scratch: vec![T::ZERO; rows],
+            held: false,
+        }
+    }
+
+    /// The upper pattern of $S$ (as a [`KktPattern`] with no constraint rows).
+    #[must_use]
+    pub fn pattern(&self) -> &KktPattern {
+        &self.pattern
+    }
+
+    /// The symbolic analysis of $S$.
+    #[must_use]
+    pub fn symbolic(&self) -> &Symbolic {
+        &self.symbolic
+    }
+
+    /// The upper values of $S$ from the last [`NormalEquations::assemble`].
+    #[must_use]
+    pub fn values(&self) -> &[T] {
+        &self.values
+    }
+
+    /// $W^{-1}$ per dof, to be set before [`NormalEquations::assemble`] and
+    /// [`NormalEquations::back_substitute`].
+    pub fn inverse_w_mut(&mut self) -> &mut [T] {
+        &mut self.inverse_w
+    }
+
+    /// Forgets the held factor: the next solve factorizes.
+    pub fn release(&mut self) {
+        self.held = false;
+    }
+
+    /// $S = J W^{-1} J^\top$ from the Jacobian entries in the KKT values `kkt_values` and
+    /// [`NormalEquations::inverse_w_mut`]: column $b$ is
+    /// $S_{ab} = \sum_d J_{ad} W^{-1}_d J_{bd}$ over the dofs $d$ of row $b$, accumulated
+    /// densely and gathered into the pattern.
+    pub fn assemble(&mut self, kkt: &KktPattern, kkt_values: &[T]) {
+        let rows = self.pattern.dofs;
+        for b in 0..rows {
+            let j_row = kkt.col_ptr[self.dofs + b] as usize..kkt.diagonal_slot(self.dofs + b);
+            for (&d, &j_bd) in kkt.row_idx[j_row.clone()].iter().zip(&kkt_values[j_row]) {
+                let d = d as usize;
+                let w = j_bd * self.inverse_w[d];
+                let range = self.dof_ptr[d] as usize..self.dof_ptr[d + 1] as usize;
+                for (&a, &slot) in self.dof_row[range.clone()]
+                    .iter()
+                    .zip(&self.dof_slot[range])
+                {
+                    if a as usize > b {
+                        break;
+                    }
+                    self.column[a as usize] += kkt_values[slot as usize] * w;
+                }
+            }
+            let range = self.pattern.col_ptr[b] as usize..self.pattern.col_ptr[b + 1] as usize;
+            for (&a, v) in self.pattern.row_idx[range.clone()]
+                .iter()
+                .zip(&mut self.values[range])
+            {
+                *v = self.column[a as usize];
+                self.column[a as usize] = T::ZERO;
+            }
+        }
+    }
+
+    /// $\delta = -W^{-1} J^\top \mu$ into the first `dofs` entries of `delta`.
+    pub fn back_substitute(&self, delta: &mut [T], mu: &[T], kkt_values: &[T]) {
+        for (d, out) in delta[..self.dofs].iter_mut().enumerate() {
+            let range = self.dof_ptr[d] as usize..self.dof_ptr[d + 1] as usize;
+            let mut sum = T::ZERO;
+            for (&a, &slot) in self.dof_row[range.clone()]
+                .iter()
+                .zip(&self.dof_slot[range])
+            {
+                sum += kkt_values[slot as usize] * mu[a as usize];
+            }
+            *out = -self.inverse_w[d] * sum;
+        }
+    }
+
+    /// Factorizes the assembled $S$; pivot $k$ with $d_k \le \epsilon\thinspace s_k$
+    /// becomes $\delta\thinspace s_k$, with $s_k$ the diagonal of $S$ (or the largest one
+    /// for an empty row).
+    pub fn factorize(&mut self, epsilon: T, delta: T) -> FactorOutcome {
+        let p = &self.pattern;
+        let largest = (0..p.dofs).fold(T::ZERO, |m, k| {
+            let v = self.values[p.diagonal_slot(k)];
+            if v > m { v } else { m }
+        });
+        let fallback = if largest > T::ZERO { largest } else { T::ONE };
+        for (scale, &old) in self.pivot_scale.iter_mut().zip(&self.symbolic.perm) {
+            let v = self.values[p.diagonal_slot(old as usize)];
+            *scale = if v > T::ZERO { v } else { fallback };
+        }
+        let outcome = self.factor.factor_paired(
+            &self.symbolic,
+            &self.values,
+            &self.pivot_scale,
+            epsilon,
+            delta,
+        );
+        self.held = matches!(outcome, FactorOutcome::Factored { .. });
+        outcome
+    }
+
+    /// Solves $S\mu = $ `c` to $\lVert S\mu - c\rVert_\infty \le$ `target` by conjugate
+    /// gradients preconditioned with the held factor $\hat S$ (module docs): at most
+    /// [`HELD_ITERATIONS`] iterations with a factor from an earlier $S$; if they fall short,
+    /// $S$ is factorized and the iteration goes on from where it is for at most
+    /// `max_iterations` more (with the exact factor, one iteration solves up to the
+    /// regularization and rounding, and the rest refine).
+    pub fn solve(
+        &mut self,
+        mu: &mut [T],
+        c: &[T],
+        target: T,
+        max_iterations: u32,
+        epsilon: T,
+        delta: T,
+    ) -> NormalSolve<T> {
+        let mut out = NormalSolve {
+            residual: T::ZERO,
+            failed: false,
+            factorized: false,
+            solves: 0,
+        };
+        mu.iter_mut().for_each(|m| *m = T::ZERO);
+        self.residual.copy_from_slice(c);
+        let initial = max_abs(c);
+        out.residual = initial;
+        if initial <= target {
+            return out;
+        }
+        if self.held {
+            out.residual = self.conjugate_gradients(mu, HELD_ITERATIONS, target, &mut out.solves);
+            if out.residual <= target {
+                return out;
+            }
+        }
+        out.factorized = true;
+        if !matches!(
+            self.factorize(epsilon, delta),
+            FactorOutcome::Factored { .. }
+        ) {
+            out.failed = true;
+            return out;
+        }
+        // Go on from the iterate reached so far (its true residual), or from zero if the
+        // held factor led away.
+        let reached = self.residual_of(mu, c);
+        if !reached.is_finite() || reached > initial {
+            mu.iter_mut().for_each(|m| *m = T::ZERO);
+            self.residual.copy_from_slice(c);
+        } else if reached <= target {
+            out.residual = reached;
+            return out;
+        }
+        out.residual = self.conjugate_gradients(mu, max_iterations.max(1), target, &mut out.solves);
+        out
+    }
+
+    /// Preconditioned conjugate gradients on $S\mu = c$ from the iterate `mu`, whose
+    /// residual $r = c - S\mu$ is in the residual buffer: $z = \hat S^{-1} r$,
+    /// $p \leftarrow z + \beta p$, $\alpha = r^\top z / p^\top S p$,
+    /// $\mu \mathrel{+}= \alpha p$, $r \mathrel{-}= \alpha S p$, until
+    /// $\lVert r\rVert_\infty \le$ `target` or `iterations` iterations, or a breakdown
+    /// ($p^\top S p \le 0$ or non-finite), or the residual more than doubles from the start
+    /// (a preconditioner too far from $S$). Adds the triangular solves to `solves`; returns
+    /// $\lVert r\rVert_\infty$ of the recurrence.
+    fn conjugate_gradients(
+        &mut self,
+        mu: &mut [T],
+        iterations: u32,
+        target: T,
+        solves: &mut u32,
+    ) -> T {
+        let mut rz = T::ZERO;
+        let mut residual = max_abs(&self.residual);
+        // A held factor far from the current S shows at once: the residual grows.
+        let give_up = T::TWO * residual;
+        for k in 0..iterations {
+            self.factor.solve_paired(
+                &self.symbolic,
+                &mut self.preconditioned,
+                &self.residual,
+                &mut self.scratch,
+            );
+            *solves += 1;
+            let rz_next = dot(&self.residual, &self.preconditioned);
+            let beta = if k == 0 { T::ZERO } else { rz_next / rz };
+            rz = rz_next;
+            for (p, &z) in self.direction.iter_mut().zip(&self.preconditioned) {
+                *p = z + beta * *p;
+            }
+            symmetric_product(
+                &self.pattern,
+                &self.values,
+                &mut self.product,
+                &self.direction,
+            );
+            let curvature = dot(&self.direction, &self.product);
+            if !(curvature > T::ZERO && rz.is_finite()) {
+                break;
+            }
+            let alpha = rz / curvature;
+            for ((m, r), (&p, &q)) in mu
+                .iter_mut()
+                .zip(self.residual.iter_mut())
+                .zip(self.direction.iter().zip(&self.product))
+            {
+                *m += alpha * p;
+                *r -= alpha * q;
+            }
+            residual = max_abs(&self.residual);
+            if !(residual > target && residual <= give_up) {
+                break;
+            }
+        }
+        residual
+    }
+
+    /// Writes $c - S\mu$ into the residual buffer and returns its max norm.
+    fn residual_of(&mut self, mu: &[T], c: &[T]) -> T {
+        symmetric_product(&self.pattern, &self.values, &mut self.residual, mu);
+        for (r, &ci) in self.residual.iter_mut().zip(c) {
+            *r = ci - *r;
+        }
+        max_abs(&self.residual)
+    }
+}
+
+/// $u^\top v$.
+#[inline]
+fn dot<T: Real>(u: &[T], v: &[T]) -> T {
+    u.iter().zip(v).fold(T::ZERO, |acc, (&a, &b)| acc + a * b)
+}
+
+/// The primal rows of constraint column `c` of `kkt`: the dofs of row `c` of $J$.
+fn jacobian_rows(kkt: &KktPattern, c: usize) -> &[u32] {
+    let col = kkt.dofs + c;
+    &kkt.row_idx[kkt.col_ptr[col] as usize..kkt.diagonal_slot(col)]
+}
+
+#[cfg(test)]
+mod tests {
+    use alloc::vec;
+    use alloc::vec::Vec;
+
+    use super::NormalEquations;
+    use crate::chain::{Chain, dense, kkt_values};
+    use crate::kkt::max_abs;
+    use crate::pattern::KktPattern;
+
+    /// The chain's KKT values, its dense $J$ (rows × dofs) and $W^{-1}_d = 1/(1 + d)$.
+    fn chain() -> (KktPattern, Vec<f64>, Vec<Vec<f64>>, Vec<f64>) {
+        let pattern = Chain::new(11).pattern(false);
+        let values = kkt_values(&pattern);
+        let k = dense(&pattern, &values);
+        let (dofs, rows) = (pattern.dofs, pattern.rows);
+        let j = (0..rows).map(|c| k[dofs + c][..dofs].to_vec()).collect();
+        let inverse_w = (0..dofs).map(|d| 1.0 / (1.0 + d as f64)).collect();
+        (pattern, values, j, inverse_w)
+    }
+
+    fn assembled(pattern: &KktPattern, values: &[f64], inverse_w: &[f64]) -> NormalEquations<f64> {
+        let mut normal = NormalEquations::new(pattern);
+        normal.inverse_w.copy_from_slice(inverse_w);
+        normal.assemble(pattern, values);
+        normal
+    }
+
+    /// Every entry of $S$, stored or not, is $\sum_d J_{ad} W^{-1}_d J_{bd}$ from the dense
+    /// $J$.
+    #[test]
+    fn assembles_j_w_inverse_j_transpose() {
+        let (pattern, values, j, inverse_w) = chain();
+        let normal = assembled(&pattern, &values, &inverse_w);
+        let s = dense(normal.pattern(), normal.values());
+        assert!(j.len() >= 4);
+        for a in 0..j.len() {
+            for b in 0..j.len() {
+                let want: f64 = (0..pattern.dofs)
+                    .map(|d| j[a][d] * inverse_w[d] * j[b][d])
+                    .sum();
+                assert!((s[a][b] - want).abs() <= 1e-14, "({a}, {b})");
+            }
+        }
+        // The chain's rows share nodes: S is not diagonal.
+        assert!(s[0][1] != 0.0);
+    }
+
+    /// $\delta = -W^{-1}J^\top\mu$ with $S\mu = C$ solves the projection's KKT system:
+    /// $W\delta + J^\top\mu = 0$ and $J\delta = -C$, checked with the dense $J$.
+    #[test]
+    fn solves_the_projection_system() {
+        let (pattern, values, j, inverse_w) = chain();
+        let mut normal = assembled(&pattern, &values, &inverse_w);
+        let rows = j.len();
+        let c: Vec<f64> = (0..rows).map(|r| 0.01 * (r as f64 - 1.5)).collect();
+        let mut mu = vec![0.0; rows];
+        let solve = normal.solve(&mut mu, &c, 1e-14, 10, 1e-13, 1e-8);
+        assert!(solve.factorized && !solve.failed);
+        assert!(solve.residual <= 1e-14);
+        let mut delta = vec![0.0; pattern.dofs];
+        normal.back_substitute(&mut delta, &mu, &values);
+        for d in 0..pattern.dofs {
+            let stationarity =
+                delta[d] / inverse_w[d] + (0..rows).map(|r| j[r][d] * mu[r]).sum::<f64>();
+            assert!(stationarity.abs() <= 1e-13, "dof {d}: {stationarity}");
+        }
+        for r in 0..rows {
+            let linear: f64 = (0..pattern.dofs).map(|d| j[r][d] * delta[d]).sum();
+            assert!((linear + c[r]).abs() <= 1e-13, "row {r}");
+        }
+    }
+
+    /// The held factor serves a slightly different $S$ without a factorization, and a
+    /// very different one ($W$ a thousand times heavier on half the dofs, as pinned nodes)
+    /// is refactorized; both solves reach the target.
+    #[test]
+    fn held_factor_serves_nearby_matrices_only() {
+        let (pattern, values, j, mut inverse_w) = chain();
+        let mut normal = assembled(&pattern, &values, &inverse_w);
+        let c: Vec<f64> = (0..j.len()).map(|r| 1e-3 * (1.0 + r as f64)).collect();
+        let mut mu = vec![0.0; j.len()];
+        let target = 1e-9;
+        assert!(
+            normal
+                .solve(&mut mu, &c, target, 10, 1e-13, 1e-8)
+                .factorized
+        );
+        inverse_w[3] *= 1.01;
+        normal.inverse_w.copy_from_slice(&inverse_w);
+        normal.assemble(&pattern, &values);
+        let near = normal.solve(&mut mu, &c, target, 10, 1e-13, 1e-8);
+        assert!(!near.factorized && near.residual <= target, "{near:?}");
+        for w in inverse_w.iter_mut().step_by(2) {
+            *w *= 1e-3;
+        }
+        normal.inverse_w.copy_from_slice(&inverse_w);
+        normal.assemble(&pattern, &values);
+        let far = normal.solve(&mut mu, &c, target, 10, 1e-13, 1e-8);
+        assert!(far.factorized && far.residual <= target, "{far:?}");
+        // The reported residual is the true one, up to the recurrence's rounding.
+        let mut check = normal.clone();
+        let true_residual = check.residual_of(&mu, &c);
+        assert!(true_residual <= 2.0 * target, "{true_residual}");
+        assert!(max_abs(&mu).is_finite());
+    }
+}
