@@ -1,14 +1,13 @@
-//! What an active frame of the page turn does, for the default book in `f64` and `f32` and
-//! for `f32` in plain AMD order: per frame with an active page, the step time, the KKT
+//! What an active frame of the page turn does, for the default book in `f64` and `f32`: per frame with an active page, the step time, the KKT
 //! factorizations and refinement steps of the Newton step, and the constraint projection's
 //! iterations, normal-equation factorizations and triangular solves (median, p99, max and
-//! total), with the merge frame and the largest DOG residual, in one run:
+//! total), with the merge frame, the largest DOG residual and the frames whose residual
+//! exceeds 2e-4, in one run:
 //! `cargo run --release -p folio-bench --example frame_work`.
 
 use folio_bench::book::{PAGE_TURN, Play, play_in, quantile};
 use folio_book::{BookSettings, Phase, Script};
 use folio_kernels::Real;
-use folio_solvers::Ordering;
 
 fn row(name: &str, values: &[f64]) {
     println!(
@@ -50,13 +49,32 @@ fn table<T: Real>(name: &str, settings: BookSettings<T>, script: &Script) {
     for (label, count) in counts {
         row(label, &pick(&|i| f64::from(count(i))));
     }
+    let after = pick(&|i| r[i].correction.after.to_f64());
+    let tolerance = settings.constraint_tolerance.to_f64();
+    println!(
+        "projection left max|C| above its tolerance {tolerance:.0e} in {} frames (worst {:.1e})",
+        after.iter().filter(|&&c| c > tolerance).count(),
+        after.iter().copied().fold(0.0, f64::max)
+    );
+    for &i in &active {
+        if p.dog[i] > 2e-4 {
+            println!(
+                "  DOG residual {:.2e} at frame {i} ({:?}): {:?}, {} contacts resolved",
+                p.dog[i], r[i].phase, r[i].correction, r[i].contacts.resolved
+            );
+        }
+    }
+    let linear = pick(&|i| r[i].solver.linear_residual.to_f64());
+    println!(
+        "KKT relative residual after refinement: median {:.1e}, p99 {:.1e}, max {:.1e}",
+        quantile(&linear, 0.5),
+        quantile(&linear, 0.99),
+        linear.iter().copied().fold(0.0, f64::max)
+    );
 }
 
 fn main() {
     let script = Script::parse(PAGE_TURN).expect("fixture");
     table("f64, default", BookSettings::<f64>::default(), &script);
     table("f32, default", BookSettings::<f32>::default(), &script);
-    let mut amd = BookSettings::<f32>::default();
-    amd.solver.ordering = Ordering::Amd;
-    table("f32, AMD order", amd, &script);
 }

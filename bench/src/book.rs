@@ -19,6 +19,8 @@ pub struct Play<T = f64> {
     pub rms_stretch_mean: f64,
     /// Largest DOG residual after any step.
     pub dog_max: f64,
+    /// DOG residual after every step (0 without an active page).
+    pub dog: Vec<f64>,
     /// Frames with an active page.
     pub active_frames: usize,
     /// Pages left, right and held at the end.
@@ -48,6 +50,7 @@ pub fn play_in<T: Real>(settings: BookSettings<T>, script: &Script) -> Play<T> {
         max_stretch_mean: 0.0,
         rms_stretch_mean: 0.0,
         dog_max: 0.0,
+        dog: Vec::new(),
         active_frames: 0,
         final_pages: [0; 3],
         reports: Vec::new(),
@@ -68,6 +71,9 @@ pub fn play_in<T: Real>(settings: BookSettings<T>, script: &Script) -> Play<T> {
             rms_sum += rms.to_f64();
             let dog = book.dog_residual().map_or(0.0, Real::to_f64);
             out.dog_max = out.dog_max.max(dog);
+            out.dog.push(dog);
+        } else {
+            out.dog.push(0.0);
         }
     }
     let c = book.counts();

@@ -205,11 +205,16 @@ impl<T: Real> NormalEquations<T> {
         self.held = false;
     }
 
-    /// $S = J W^{-1} J^\top$ from the Jacobian entries in the KKT values `kkt_values` and
+    /// $S_\rho = J W^{-1} J^\top + \rho\thinspace\mathrm{diag}(J W^{-1} J^\top)$ from the
+    /// Jacobian entries in the KKT values `kkt_values` and the weights set through
     /// [`NormalEquations::inverse_w_mut`]: column $b$ is
     /// $S_{ab} = \sum_d J_{ad} W^{-1}_d J_{bd}$ over the dofs $d$ of row $b$, accumulated
-    /// densely and gathered into the pattern.
-    pub fn assemble(&mut self, kkt: &KktPattern, kkt_values: &[T]) {
+    /// densely and gathered into the pattern. The damping $\rho$ = `damping` (a
+    /// Levenberg-Marquardt term) keeps $S_\rho$ definite where the rows are nearly
+    /// dependent, as the DOG rows of nearly flat stars are (`folio_kernels::dog`): without
+    /// it the f64 page turn met pivots of $10^{-16}$ times the diagonal and a factor that
+    /// overflowed. It shortens the projection step only along those directions.
+    pub fn assemble(&mut self, kkt: &KktPattern, kkt_values: &[T], damping: T) {
         let rows = self.pattern.dofs;
         for b in 0..rows {
             let j_row = kkt.col_ptr[self.dofs + b] as usize..kkt.diagonal_slot(self.dofs + b);
@@ -230,10 +235,13 @@ impl<T: Real> NormalEquations<T> {
             let range = self.pattern.col_ptr[b] as usize..self.pattern.col_ptr[b + 1] as usize;
             for (&a, v) in self.pattern.row_idx[range.clone()]
                 .iter()
-                .zip(&mut self.values[range])
+                .zip(&mut self.values[range.clone()])
             {
                 *v = self.column[a as usize];
                 self.column[a as usize] = T::ZERO;
+            }
+            if let Some(diagonal) = self.values[range].last_mut() {
+                *diagonal += damping * *diagonal;
             }
         }
     }
@@ -440,7 +448,7 @@ mod tests {
     fn assembled(pattern: &KktPattern, values: &[f64], inverse_w: &[f64]) -> NormalEquations<f64> {
         let mut normal = NormalEquations::new(pattern);
         normal.inverse_w.copy_from_slice(inverse_w);
-        normal.assemble(pattern, values);
+        normal.assemble(pattern, values, 0.0);
         normal
     }
 
@@ -506,14 +514,14 @@ mod tests {
         );
         inverse_w[3] *= 1.01;
         normal.inverse_w.copy_from_slice(&inverse_w);
-        normal.assemble(&pattern, &values);
+        normal.assemble(&pattern, &values, 0.0);
         let near = normal.solve(&mut mu, &c, target, 10, 1e-13, 1e-8);
         assert!(!near.factorized && near.residual <= target, "{near:?}");
         for w in inverse_w.iter_mut().step_by(2) {
             *w *= 1e-3;
         }
         normal.inverse_w.copy_from_slice(&inverse_w);
-        normal.assemble(&pattern, &values);
+        normal.assemble(&pattern, &values, 0.0);
         let far = normal.solve(&mut mu, &c, target, 10, 1e-13, 1e-8);
         assert!(far.factorized && far.residual <= target, "{far:?}");
         // The reported residual is the true one, up to the recurrence's rounding.

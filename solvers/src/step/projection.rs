@@ -161,7 +161,9 @@ impl<T: Real> Workspace<T> {
             };
             *w = h2 / (m * weight);
         }
-        self.normal.assemble(&self.kkt.pattern, &self.kkt.values);
+        let damping = s.regularization * folio_kernels::math::sqrt(s.regularization);
+        self.normal
+            .assemble(&self.kkt.pattern, &self.kkt.values, damping);
         let (delta, mu) = self.solution.split_at_mut(dofs);
         let solve = self.normal.solve(
             mu,
