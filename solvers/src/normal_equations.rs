@@ -210,10 +210,8 @@ impl<T: Real> NormalEquations<T> {
     /// [`NormalEquations::inverse_w_mut`]: column $b$ is
     /// $S_{ab} = \sum_d J_{ad} W^{-1}_d J_{bd}$ over the dofs $d$ of row $b$, accumulated
     /// densely and gathered into the pattern. The damping $\rho$ = `damping` (a
-    /// Levenberg-Marquardt term) keeps $S_\rho$ definite where the rows are nearly
-    /// dependent, as the DOG rows of nearly flat stars are (`folio_kernels::dog`): without
-    /// it the f64 page turn met pivots of $10^{-16}$ times the diagonal and a factor that
-    /// overflowed. It shortens the projection step only along those directions.
+    /// Levenberg-Marquardt term, [`crate::Settings::projection_damping`]) shortens the
+    /// projection step along the directions in which $S$ is nearly singular.
     pub fn assemble(&mut self, kkt: &KktPattern, kkt_values: &[T], damping: T) {
         let rows = self.pattern.dofs;
         for b in 0..rows {

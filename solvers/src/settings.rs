@@ -77,6 +77,18 @@ pub struct Settings<T: Real> {
     /// over the turn 837 → 279 in `f64` and 270 → 0 in `f32`, with the DOG residual, the
     /// stretch and the merge unchanged within the run-to-run spread of the turn.
     pub refinement_tolerance: T,
+    /// Damping $\rho$ of the constraint projection's normal equations,
+    /// $J W^{-1} J^\top + \rho\thinspace\mathrm{diag}(J W^{-1} J^\top)$
+    /// ([`crate::normal_equations::NormalEquations::assemble`]). Finite, $\ge 0$. Default 0 in
+    /// `f64`, $\varepsilon^{3/4} = 6.4 \cdot 10^{-6}$ in `f32`. The DOG rows of nearly flat
+    /// stars make $J W^{-1} J^\top$ nearly singular (eigenvalues near the square of the
+    /// flat-star remedy's offset: $10^{-12}$ in `f64`, $10^{-6}$ in `f32`). In `f32` its factor
+    /// cannot resolve them; damped, the page turn's projection needs 4 triangular solves per
+    /// active frame (median; 13 undamped) and ends with a DOG residual of 1.6e-4 (2.4e-4).
+    /// In `f64` the factor resolves them, and a damping of $\varepsilon^{3/4}$ left DOG
+    /// residuals of 2.8e-4 on the page turn against 1.1e-4 undamped
+    /// (`cargo run --release -p folio-bench --example frame_work`).
+    pub projection_damping: T,
     /// Evaluate the eq. 3 residual after the last iteration (one gradient and Jacobian
     /// evaluation, no factorization) so the status can say `Converged`. Default on.
     pub check_final_residual: bool,
@@ -105,6 +117,11 @@ impl<T: Real> Default for Settings<T> {
             regularization: sqrt_eps,
             refinement_steps: 10,
             refinement_tolerance: sqrt_eps,
+            projection_damping: if T::EPSILON.to_f64() < 1e-10 {
+                T::ZERO
+            } else {
+                sqrt_eps * folio_kernels::math::sqrt(sqrt_eps)
+            },
             check_final_residual: true,
         }
     }
@@ -146,6 +163,9 @@ impl<T: Real> Settings<T> {
         }
         if !(self.refinement_tolerance.is_finite() && self.refinement_tolerance >= T::ZERO) {
             return bad("refinement_tolerance", "finite and >= 0");
+        }
+        if !(self.projection_damping.is_finite() && self.projection_damping >= T::ZERO) {
+            return bad("projection_damping", "finite and >= 0");
         }
         Ok(())
     }

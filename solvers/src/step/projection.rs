@@ -161,16 +161,15 @@ impl<T: Real> Workspace<T> {
             };
             *w = h2 / (m * weight);
         }
-        let damping = s.regularization * folio_kernels::math::sqrt(s.regularization);
         self.normal
-            .assemble(&self.kkt.pattern, &self.kkt.values, damping);
+            .assemble(&self.kkt.pattern, &self.kkt.values, s.projection_damping);
         let (delta, mu) = self.solution.split_at_mut(dofs);
         let solve = self.normal.solve(
             mu,
             &self.constraint,
             T::from_f64(0.25) * pin.tolerance,
             s.refinement_steps,
-            s.pivot_epsilon,
+            s.regularization,
             s.regularization,
         );
         out.solves += solve.solves;
