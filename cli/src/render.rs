@@ -17,6 +17,7 @@ pub mod font;
 pub mod raster;
 pub mod shading;
 pub mod shadow;
+pub mod span;
 pub mod stage;
 pub mod texture;
 pub mod vector;

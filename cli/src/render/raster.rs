@@ -4,6 +4,7 @@
 use glam::Vec3;
 
 use super::camera::Camera;
+use super::span::{barycentric, edge, row_span};
 
 /// Attributes interpolated across a triangle: world position (3), normal (3), UV (2).
 pub const ATTRIBUTES: usize = 8;
@@ -61,18 +62,13 @@ fn clip_near(triangle: &[Corner; 3], near: f32) -> ([Corner; 4], usize) {
     (out, n)
 }
 
-/// Edge function: twice the signed area of $(a, b, p)$ in screen coordinates.
-#[inline]
-fn edge(a: [f32; 2], b: [f32; 2], p: [f32; 2]) -> f32 {
-    (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])
-}
-
 /// Calls `fragment` for every pixel centre of `camera`'s viewport covered by `triangle`.
 ///
 /// The triangle is clipped at the near plane; each piece is projected
 /// ([`Camera::project`]), and a pixel centre $p$ is covered when its barycentric
 /// coordinates $\lambda_i = E_i(p) / E$ (edge functions over twice the signed area) are all
-/// $\ge 0$. Attributes $a$ are interpolated perspective-correctly,
+/// $\ge 0$; each row tests only the columns of its [`row_span`], which holds every covered
+/// one. Attributes $a$ are interpolated perspective-correctly,
 /// $a(p) = \sum_i \lambda_i a_i / z_i \thinspace/\thinspace \sum_i \lambda_i / z_i$.
 ///
 /// With `cull`, triangles that are clockwise seen from the eye (back faces of a mesh whose
@@ -130,13 +126,13 @@ fn rasterize_clipped(
     let weighted: [[f32; ATTRIBUTES]; 3] =
         [0, 1, 2].map(|i| triangle[i].attributes.map(|v| v * inverse[i]));
     for y in y0..=y1 {
-        for x in x0..=x1 {
-            let p = [x as f32 + 0.5, y as f32 + 0.5];
-            let l = [
-                edge(screen[1], screen[2], p) / area,
-                edge(screen[2], screen[0], p) / area,
-                edge(screen[0], screen[1], p) / area,
-            ];
+        let py = y as f32 + 0.5;
+        let Some((first, last)) = row_span(&screen, area, py, x0, x1) else {
+            continue;
+        };
+        for x in first..=last {
+            let p = [x as f32 + 0.5, py];
+            let l = barycentric(&screen, area, p);
             if l.iter().any(|&v| v < 0.0) {
                 continue;
             }
