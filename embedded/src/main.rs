@@ -21,6 +21,8 @@
 #![deny(unsafe_code)]
 
 mod clock;
+mod fixture;
+mod fixture_format;
 mod heap;
 mod memory;
 mod report;

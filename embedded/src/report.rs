@@ -3,9 +3,10 @@
 
 use cortex_m_semihosting::hprintln;
 use folio_book::Phase;
+use folio_geometry::BlockSide;
 
 use crate::memory::Footprint;
-use crate::turn::TurnReport;
+use crate::turn::{TurnReport, phase_name};
 
 /// Heap target for the f32 book (bytes).
 pub const HEAP_TARGET: u64 = 256 * 1024;
@@ -66,17 +67,19 @@ pub fn print_figures(report: &TurnReport, cx: &Context) {
     let (a, r, f) = (report.active, report.resting, cx.footprint);
     hprintln!("== summary ({} on {}) ==", cx.precision, cx.machine);
     hprintln!(
-        "active steps: {}, median {} instructions, max {} (frame {}), {}",
+        "active steps: {}, median {} instructions, p99 {}, max {} (frame {}), {}",
         a.steps,
         a.median,
+        a.p99,
         a.max,
         a.max_frame,
         verdict(a.max, ACTIVE_STEP_TARGET)
     );
     hprintln!(
-        "resting steps: {}, median {} instructions, max {} (frame {})",
+        "resting steps: {}, median {} instructions, p99 {}, max {} (frame {})",
         r.steps,
         r.median,
+        r.p99,
         r.max,
         r.max_frame
     );
@@ -87,12 +90,11 @@ pub fn print_figures(report: &TurnReport, cx: &Context) {
         report.input_max
     );
     hprintln!(
-        "heap: peak {} bytes ({}), {} after setup ({} of them the parsed script), {} at the end; \
+        "heap: peak {} bytes ({}), {} after setup, {} at the end; \
          {} allocation calls, {} inside steps, {} by inputs, {} failed",
         report.heap.peak,
         verdict(report.heap.peak as u64, HEAP_TARGET),
         report.setup_heap,
-        report.script_heap,
         report.heap.current,
         report.heap.allocations,
         report.step_allocations,
@@ -127,11 +129,17 @@ pub fn print_checks(report: &TurnReport, cx: &Context) -> bool {
     let c = report.checks;
     let [before, after] = c.counts;
     hprintln!("== checks ==");
+    let (merge_frame, merge_side) = match c.first_merge {
+        Some((frame, BlockSide::Left)) => (frame, "left"),
+        Some((frame, BlockSide::Right)) => (frame, "right"),
+        None => (0, "none"),
+    };
     hprintln!(
-        "{}: the page merged once, into the left block (merges {}, first {:?})",
+        "{}: the page merged once, into the left block (merges {}, first at frame {} into {})",
         mark(c.merged_left()),
         c.merges,
-        c.first_merge
+        merge_frame,
+        merge_side
     );
     hprintln!(
         "{}: page counts left/right/active {}/{}/{} -> {}/{}/{}",
@@ -154,23 +162,27 @@ pub fn print_checks(report: &TurnReport, cx: &Context) -> bool {
         c.stalled_steps
     );
     hprintln!(
-        "{}: the book is at rest at the end ({:?})",
+        "{}: the book is at rest at the end ({})",
         mark(c.final_phase == Phase::AtRest),
-        c.final_phase
+        phase_name(c.final_phase)
     );
     let passed = c.passed();
     hprintln!(
-        "summary: {} {} active_median={} active_max={} resting_median={} resting_max={} \
-         heap_peak={} flash={} stack={} instructions_per_tick={} checks={}",
+        "summary: {} {} active_median={} active_p99={} active_max={} resting_median={} \
+         resting_p99={} resting_max={} heap_peak={} flash={} stack={} merge_frame={} \
+         instructions_per_tick={} checks={}",
         cx.precision,
         cx.machine,
         report.active.median,
+        report.active.p99,
         report.active.max,
         report.resting.median,
+        report.resting.p99,
         report.resting.max,
         report.heap.peak,
         cx.footprint.flash,
         cx.stack,
+        merge_frame,
         cx.factor,
         mark(passed)
     );

@@ -1,4 +1,5 @@
-//! Per-step instruction counts and their summary (median and max) for one kind of step.
+//! Per-step instruction counts and their summary (median, 99th percentile and max) for one
+//! kind of step.
 
 /// Most steps one [`StepCounts`] records.
 pub const MAX_STEPS: usize = 1024;
@@ -10,13 +11,17 @@ pub struct StepCounts {
     len: usize,
 }
 
-/// Median and maximum of a [`StepCounts`] (instructions), with the number of steps.
+/// Median, 99th percentile and maximum of a [`StepCounts`] (instructions), with the number
+/// of steps.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Summary {
     /// Steps counted.
     pub steps: usize,
     /// Median instructions per step (the lower middle for an even count; 0 with no step).
     pub median: u64,
+    /// 99th percentile by nearest rank: the $\lceil 0.99 n \rceil$-th smallest of the $n$
+    /// steps (0 with no step).
+    pub p99: u64,
     /// Most instructions in one step (0 with no step).
     pub max: u64,
     /// Frame of the step with the most instructions.
@@ -46,7 +51,7 @@ impl StepCounts {
         true
     }
 
-    /// Median and max.
+    /// Median, 99th percentile and max.
     #[must_use]
     pub fn summary(&self) -> Summary {
         let steps = &self.steps[..self.len];
@@ -64,6 +69,10 @@ impl StepCounts {
         Summary {
             steps: self.len,
             median: self.len.checked_sub(1).map_or(0, |last| sorted[last / 2]),
+            p99: (self.len * 99)
+                .div_ceil(100)
+                .checked_sub(1)
+                .map_or(0, |i| sorted[i]),
             max,
             max_frame,
             total,

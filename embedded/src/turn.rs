@@ -2,7 +2,8 @@
 //! the recorded page turn of the integration tests (`tests/fixtures/page_turn.input`: camera
 //! rays for a grab near the right page's outer edge at frame 30, 100 frames of drag over the
 //! spine, the release at frame 131, then the page falls and settles; 750 frames), the same
-//! input that `tests/tests/book.rs` (`page_turn_runs_in_f32`) plays on the host.
+//! input that `tests/tests/book.rs` (`page_turn_runs_in_f32`) plays on the host, compiled to
+//! binary at build time ([`crate::fixture`]).
 //!
 //! Each step is timed alone (the inputs before it are timed apart); every step's line is
 //! printed, then the summary and the result checks: one merge, into the left block; the
@@ -10,18 +11,16 @@
 //! step that failed to advance the state; the book at rest at the end.
 
 use cortex_m_semihosting::hprintln;
-use folio_book::{Book, BookSettings, PageCounts, Phase, Script};
+use folio_book::{Book, BookSettings, PageCounts, Phase};
 use folio_geometry::BlockSide;
 use folio_kernels::Vec3Ops;
 use folio_solvers::StepStatus;
 
 use crate::Real;
 use crate::clock::Clock;
+use crate::fixture::Fixture;
 use crate::heap::{CountingHeap, HeapStats};
 use crate::stats::{StepCounts, Summary};
-
-/// The recorded page turn (module docs).
-const PAGE_TURN: &str = include_str!("../../tests/fixtures/page_turn.input");
 
 /// What the run measured (instructions are SysTick ticks times the calibrated factor).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -30,9 +29,7 @@ pub struct TurnReport {
     pub setup_instructions: u64,
     /// Steps `Book::new` took to settle the blocks.
     pub settle_steps: u32,
-    /// Heap held by the parsed script (bytes).
-    pub script_heap: usize,
-    /// Heap held after `Book::new` (bytes, the script's included).
+    /// Heap held after `Book::new` (bytes).
     pub setup_heap: usize,
     /// Steps with an active page (held or released).
     pub active: Summary,
@@ -96,10 +93,10 @@ impl Checks {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum TurnError {
-    /// The fixture does not parse (its 1-based line).
-    Script {
-        /// 1-based line.
-        line: usize,
+    /// The binary fixture is malformed at this byte ([`crate::fixture::FixtureError`]).
+    Fixture {
+        /// Byte offset in the binary fixture.
+        offset: usize,
     },
     /// `Book::new` refused the default settings.
     Setup,
@@ -123,8 +120,11 @@ pub enum TurnError {
 impl core::fmt::Display for TurnError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
-            Self::Script { line } => {
-                write!(f, "the page-turn fixture does not parse (line {line})")
+            Self::Fixture { offset } => {
+                write!(
+                    f,
+                    "the binary page-turn fixture is malformed at byte {offset}"
+                )
             }
             Self::Setup => write!(f, "Book::new refused the default settings"),
             Self::Input { frame } => write!(f, "an input was refused at frame {frame}"),
@@ -137,7 +137,8 @@ impl core::fmt::Display for TurnError {
 }
 
 /// Lowercase name of a phase.
-fn phase_name(phase: Phase) -> &'static str {
+#[must_use]
+pub fn phase_name(phase: Phase) -> &'static str {
     match phase {
         Phase::AtRest => "rest",
         Phase::Held => "held",
@@ -174,24 +175,23 @@ fn all_finite(book: &Book<Real>) -> bool {
 /// # Errors
 /// [`TurnError`] when the fixture, the setup, an input or a step is refused.
 pub fn run(clock: &Clock, factor: u64, heap: &CountingHeap) -> Result<TurnReport, TurnError> {
-    let script = Script::parse(PAGE_TURN).map_err(|e| TurnError::Script { line: e.line })?;
-    if script.frames as usize > crate::stats::MAX_STEPS {
+    let fixture_error = |e: crate::fixture::FixtureError| TurnError::Fixture { offset: e.offset };
+    let mut fixture = Fixture::page_turn().map_err(fixture_error)?;
+    if fixture.frames as usize > crate::stats::MAX_STEPS {
         return Err(TurnError::TooManyFrames {
-            frames: script.frames,
+            frames: fixture.frames,
         });
     }
-    let script_heap = heap.stats().current;
 
     let t0 = clock.now();
     let mut book = Book::<Real>::new(BookSettings::default()).map_err(|_| TurnError::Setup)?;
     let setup_instructions = (clock.now() - t0) * factor;
     let setup_heap = heap.stats().current;
     hprintln!(
-        "book: built in {} instructions ({} settling steps), {} heap bytes held ({} of them the parsed script)",
+        "book: built in {} instructions ({} settling steps), {} heap bytes held",
         setup_instructions,
         book.settle_steps(),
-        setup_heap,
-        script_heap
+        setup_heap
     );
     hprintln!(
         "step frame phase status instructions dofs rows iterations halvings corrections collision-rounds"
@@ -208,11 +208,11 @@ pub fn run(clock: &Clock, factor: u64, heap: &CountingHeap) -> Result<TurnReport
         final_phase: book.phase(),
     };
     let (mut input_max, mut step_allocations, mut input_allocations) = (0, 0, 0);
-    for frame in 0..script.frames {
+    for frame in 0..fixture.frames {
         let before_input = heap.stats().allocations;
         let t_input = clock.now();
-        for event in script.events_at(frame) {
-            book.apply(script.camera, script.forward, event.action)
+        while let Some(action) = fixture.next_at(frame).map_err(fixture_error)? {
+            book.apply(fixture.camera, fixture.forward, action)
                 .map_err(|_| TurnError::Input { frame })?;
         }
         input_max = input_max.max((clock.now() - t_input) * factor);
@@ -264,7 +264,6 @@ pub fn run(clock: &Clock, factor: u64, heap: &CountingHeap) -> Result<TurnReport
     Ok(TurnReport {
         setup_instructions,
         settle_steps: book.settle_steps(),
-        script_heap,
         setup_heap,
         active: active.summary(),
         resting: resting.summary(),
