@@ -63,7 +63,7 @@ pub struct Ldlt<T> {
     /// The current row's nonzero columns.
     reach: Vec<u32>,
     /// One bit per column: visited by the current row's walk; zero between rows.
-    seen: Vec<u64>,
+    seen: Vec<usize>,
     /// [`Symbolic::fingerprint`] of the analysis this factor belongs to.
     fingerprint: u64,
 }
@@ -79,7 +79,7 @@ impl<T: Real> Ldlt<T> {
             work: vec![T::ZERO; n],
             fill: vec![0; n],
             reach: vec![0; n],
-            seen: vec![0; n.div_ceil(64)],
+            seen: vec![0; n.div_ceil(BITS)],
             fingerprint: symbolic.fingerprint,
         }
     }
@@ -150,31 +150,14 @@ impl<T: Real> Ldlt<T> {
         scale: &[T],
         limits: (T, T),
     ) -> FactorOutcome {
-        match scaling {
-            None => self.factor_with(symbolic, scale, limits, |slot, _, _| kkt[slot]),
-            Some(d) => {
-                let perm = &symbolic.perm;
-                self.factor_with(symbolic, scale, limits, |slot, i, k| {
-                    let (a, b) = (perm[i] as usize, perm[k] as usize);
-                    let (r, c) = if a <= b { (a, b) } else { (b, a) };
-                    d[r] * kkt[slot] * d[c]
-                })
-            }
-        }
-    }
-
-    /// The factorization, over the analysis's index width, with entry values from
-    /// `value(slot, i, k)` (slot, row and column of a permuted upper entry).
-    fn factor_with(
-        &mut self,
-        symbolic: &Symbolic,
-        scale: &[T],
-        limits: (T, T),
-        value: impl Fn(usize, usize, usize) -> T,
-    ) -> FactorOutcome {
+        let values = Values {
+            kkt,
+            scaling,
+            perm: &symbolic.perm,
+        };
         match &symbolic.structure {
-            Structure::Narrow(a) => self.factor_rows(symbolic, a, scale, limits, value),
-            Structure::Wide(a) => self.factor_rows(symbolic, a, scale, limits, value),
+            Structure::Narrow(a) => self.factor_rows(symbolic, a, values, scale, limits),
+            Structure::Wide(a) => self.factor_rows(symbolic, a, values, scale, limits),
         }
     }
 
@@ -183,9 +166,9 @@ impl<T: Real> Ldlt<T> {
         &mut self,
         symbolic: &Symbolic,
         arrays: &Arrays<I>,
+        values: Values<'_, T>,
         scale: &[T],
         (epsilon, delta): (T, T),
-        value: impl Fn(usize, usize, usize) -> T,
     ) -> FactorOutcome {
         let s = symbolic;
         let (a_row, a_slot, l_row) = (&arrays.a_row, &arrays.a_slot, &arrays.l_row);
@@ -198,7 +181,7 @@ impl<T: Real> Ldlt<T> {
             let (mut count, mut low) = (0, k);
             for e in s.a_ptr[k] as usize..s.a_ptr[k + 1] as usize {
                 let i = a_row[e].get();
-                let v = value(a_slot[e].get(), i, k);
+                let v = values.get(a_slot[e].get(), i, k);
                 if i == k {
                     diagonal += v;
                     continue;
@@ -207,8 +190,8 @@ impl<T: Real> Ldlt<T> {
                 low = low.min(i);
                 // Up the elimination tree to the first visited column, or to k.
                 let mut j = i;
-                while j < k && seen[j / 64] & (1 << (j % 64)) == 0 {
-                    seen[j / 64] |= 1 << (j % 64);
+                while j < k && seen[j / BITS] & (1 << (j % BITS)) == 0 {
+                    seen[j / BITS] |= 1 << (j % BITS);
                     reach[count] = j as u32;
                     count += 1;
                     j = s.parent[j] as usize;
@@ -332,33 +315,91 @@ impl<T: Real> Ldlt<T> {
     }
 }
 
+/// Bits per word of the visited-column set.
+const BITS: usize = usize::BITS as usize;
+
+/// The values the factorization reads: `kkt` by slot, scaled by `scaling` (original order)
+/// if given; `perm` maps new indices to original ones.
+#[derive(Clone, Copy)]
+struct Values<'a, T> {
+    kkt: &'a [T],
+    scaling: Option<&'a [T]>,
+    perm: &'a [u32],
+}
+
+impl<T: Real> Values<'_, T> {
+    /// The entry in `slot`, at new row `i` and column `k`: $k_s$, or $d_r k_s d_c$ with
+    /// $(r, c)$ its original row and column ($r \le c$) when scaled.
+    #[inline]
+    fn get(&self, slot: usize, i: usize, k: usize) -> T {
+        match self.scaling {
+            None => self.kkt[slot],
+            Some(d) => {
+                let (a, b) = (self.perm[i] as usize, self.perm[k] as usize);
+                let (r, c) = if a <= b { (a, b) } else { (b, a) };
+                d[r] * self.kkt[slot] * d[c]
+            }
+        }
+    }
+}
+
 /// Sorts `row`, the columns a row's walk visited (their bits set in `seen`, all in
 /// `low..k`), and clears their bits. Reads the bits in order when they are dense enough
-/// (fewer 64-column words than columns), else sorts the list.
+/// (no more words than columns), else heap-sorts the list.
 #[inline]
-fn ascending<'a>(row: &'a mut [u32], seen: &mut [u64], low: usize, k: usize) -> &'a [u32] {
+fn ascending<'a>(row: &'a mut [u32], seen: &mut [usize], low: usize, k: usize) -> &'a [u32] {
     if row.is_empty() {
         return row;
     }
-    let words = low / 64..(k - 1) / 64 + 1;
+    let words = low / BITS..(k - 1) / BITS + 1;
     if words.len() <= row.len() {
         let mut at = 0;
         for w in words {
             let mut bits = seen[w];
             seen[w] = 0;
             while bits != 0 {
-                row[at] = (64 * w) as u32 + bits.trailing_zeros();
+                row[at] = (BITS * w) as u32 + bits.trailing_zeros();
                 at += 1;
                 bits &= bits - 1;
             }
         }
     } else {
-        row.sort_unstable();
+        heapsort(row);
         for &j in row.iter() {
-            seen[j as usize / 64] = 0;
+            seen[j as usize / BITS] = 0;
         }
     }
     row
+}
+
+/// Sorts `v` ascending in $O(m \log m)$ with no allocation and little code (the
+/// microcontroller's flash): build a max-heap, then move its top to the end, $m$ times.
+fn heapsort(v: &mut [u32]) {
+    /// Moves `v[root]` down the max-heap `v[..end]`.
+    fn sift_down(v: &mut [u32], mut root: usize, end: usize) {
+        loop {
+            let mut child = 2 * root + 1;
+            if child >= end {
+                return;
+            }
+            if child + 1 < end && v[child + 1] > v[child] {
+                child += 1;
+            }
+            if v[root] >= v[child] {
+                return;
+            }
+            v.swap(root, child);
+            root = child;
+        }
+    }
+    let m = v.len();
+    for root in (0..m / 2).rev() {
+        sift_down(v, root, m);
+    }
+    for end in (1..m).rev() {
+        v.swap(0, end);
+        sift_down(v, 0, end);
+    }
 }
 
 #[cfg(test)]
@@ -366,7 +407,7 @@ mod tests {
     use alloc::vec;
     use alloc::vec::Vec;
 
-    use super::{FactorOutcome, Ldlt};
+    use super::{BITS, FactorOutcome, Ldlt, ascending, heapsort};
     use crate::chain::{Chain, dense, kkt_values};
     use crate::error::SolverError;
     use crate::ordering::Ordering;
@@ -501,6 +542,36 @@ mod tests {
             results.push((bits(ldlt.l()), bits(ldlt.d()), bits(&z)));
         }
         assert_eq!(results[0], results[1]);
+    }
+
+    /// A row's visited columns come out ascending with their bits cleared, whether read
+    /// from the bits (dense) or heap-sorted (sparse: fewer columns than words).
+    #[test]
+    fn rows_come_out_ascending() {
+        let n = 40 * BITS;
+        let (dense, sparse) = (
+            &[5u32, 3, 9, 4, 8][..],
+            &[1000, 7, 555, 1200, 9, 1100, 3][..],
+        );
+        for (columns, k) in [(dense, 10), (sparse, n - 1)] {
+            let mut seen = vec![0usize; n / BITS];
+            for &j in columns {
+                seen[j as usize / BITS] |= 1 << (j as usize % BITS);
+            }
+            let low = *columns.iter().min().unwrap() as usize;
+            let mut row = columns.to_vec();
+            let mut want = columns.to_vec();
+            want.sort_unstable();
+            assert_eq!(ascending(&mut row, &mut seen, low, k), want);
+            assert!(seen.iter().all(|&w| w == 0));
+        }
+        for m in 0..40u32 {
+            let mut v: Vec<u32> = (0..m).map(|i| (i * 7919) % 61).collect();
+            let mut want = v.clone();
+            want.sort_unstable();
+            heapsort(&mut v);
+            assert_eq!(v, want);
+        }
     }
 
     /// A factor made for one analysis refuses another of the same order and the same
