@@ -67,7 +67,8 @@ impl Family {
 ///
 /// Owns the coordinate numbering (`3 * nodes` and `dofs` entries), the compressed upper
 /// columns (`order + 1` pointers, `nnz` rows) and the term maps (`3 N` local dofs per term,
-/// [`Family::hessian_per_term`] Hessian slots, `3 N R` Jacobian slots per term), all
+/// $3N(3N + 1)/2$ Hessian slots per term with a Hessian, the upper local triangle, or
+/// $9N^2$ in a family whose terms repeat a dof; `3 N R` Jacobian slots per term), all
 /// allocated by [`KktPattern::build`] at setup. Fields are read through the accessors.
 #[derive(Clone, Debug, Default)]
 pub struct KktPattern {
