@@ -54,7 +54,9 @@ impl<T: Real> Assemble<'_, T> {
         }
     }
 
-    /// Adds `weight * blocks` through the Hessian slots of term `t` of `f`.
+    /// Adds `weight * blocks` through the Hessian slots of term `t` of `f` (their layout in
+    /// [`Family::hessian_per_term`]). Each slot receives the same terms in the same order
+    /// either way: a term adds to a slot once, except for a repeated dof (full layout).
     fn scatter_hessian<const N: usize>(
         &mut self,
         f: &Family,
@@ -63,15 +65,32 @@ impl<T: Real> Assemble<'_, T> {
         weight: T,
     ) {
         let stride = 3 * N;
-        let slots = &self.pattern.hessian_slots[f.hessian_offset + t * stride * stride..];
-        for (a, row) in blocks.iter().enumerate() {
-            for (b, block) in row.iter().enumerate() {
-                for i in 0..3 {
-                    for j in 0..3 {
-                        let s = slots[(3 * a + i) * stride + 3 * b + j];
-                        if s != NONE {
-                            self.values[s as usize] += weight * block.entry(i, j);
-                        }
+        let entry = |p: usize, q: usize| blocks[p / 3][q / 3].entry(p % 3, q % 3);
+        let slots = &self.pattern.hessian_slots[f.hessian_offset + t * f.hessian_per_term()..];
+        if f.hessian_upper {
+            let dofs = &self.pattern.local_dofs[f.dof_offset + t * stride..][..stride];
+            let mut at = 0;
+            for p in 0..stride {
+                for q in p..stride {
+                    let s = slots[at];
+                    at += 1;
+                    if s != NONE {
+                        // The stored entry is (p, q) if dof p <= dof q, else its mirror.
+                        let v = if dofs[p] <= dofs[q] {
+                            entry(p, q)
+                        } else {
+                            entry(q, p)
+                        };
+                        self.values[s as usize] += weight * v;
+                    }
+                }
+            }
+        } else {
+            for p in 0..stride {
+                for q in 0..stride {
+                    let s = slots[p * stride + q];
+                    if s != NONE {
+                        self.values[s as usize] += weight * entry(p, q);
                     }
                 }
             }
@@ -149,6 +168,82 @@ impl<T: Real> TermVisitor<T> for Assemble<'_, T> {
                 lambda.copy_from_slice(&self.lambda[row0..row0 + R]);
                 let h = term.kernel.hessian(&xs, &lambda);
                 self.scatter_hessian::<N>(&f, t, &h, T::ONE);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use alloc::vec;
+    use alloc::vec::Vec;
+    use folio_kernels::spring::Spring;
+
+    use super::{Assemble, Derivatives};
+    use crate::chain::Chain;
+    use crate::model::Model;
+    use crate::pattern::KktPattern;
+
+    /// The KKT values of `chain` on `pattern` at a bent configuration with nonzero
+    /// multipliers.
+    fn assembled(chain: &Chain, pattern: &KktPattern) -> Vec<f64> {
+        let x: Vec<_> = (0..chain.nodes)
+            .map(|i| {
+                let t = i as f64;
+                <f64 as folio_kernels::Real>::Vec3::new(t, 0.3 * t * t, 0.1 * t)
+            })
+            .collect();
+        let lambda: Vec<f64> = (0..pattern.rows()).map(|r| 0.3 + r as f64).collect();
+        let mut values = vec![0.0; pattern.nnz()];
+        let (mut gradient, mut constraint) = (vec![0.0; pattern.dofs()], vec![0.0; pattern.rows()]);
+        let mut assemble = Assemble {
+            pattern,
+            x: &x,
+            lambda: &lambda,
+            values: &mut values,
+            gradient: &mut gradient,
+            constraint: &mut constraint,
+            derivatives: Derivatives::Second,
+            energy: 0.0,
+            family: 0,
+            mismatch: false,
+        };
+        chain.visit_terms(&mut assemble);
+        assert!(!assemble.mismatch);
+        values
+    }
+
+    /// The upper-triangle Hessian maps assemble bit for bit what the full local blocks
+    /// did, and a family with a repeated node keeps the full layout.
+    #[test]
+    fn upper_hessian_maps_assemble_as_the_full_blocks() {
+        let mut chain = Chain::new(6);
+        for repeated in [false, true] {
+            if repeated {
+                chain.springs.push(Spring::new(1.0, 0.5).unwrap(), [3, 3]);
+            }
+            for hessian in [false, true] {
+                let pattern = chain.pattern(hessian);
+                let upper: Vec<bool> = pattern.families.iter().map(|f| f.hessian_upper).collect();
+                assert_eq!(upper, [!repeated, true]);
+                let mut full = pattern.clone();
+                full.families
+                    .iter_mut()
+                    .for_each(|f| f.hessian_upper = false);
+                full.fill_maps();
+                let smaller = pattern.hessian_slots.len() < full.hessian_slots.len();
+                assert_eq!(
+                    smaller,
+                    !repeated || hessian,
+                    "an upper-layout family is smaller"
+                );
+                let (ours, theirs) = (assembled(&chain, &pattern), assembled(&chain, &full));
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(
+                    bits(&ours),
+                    bits(&theirs),
+                    "repeated {repeated}, Hessian {hessian}"
+                );
             }
         }
     }

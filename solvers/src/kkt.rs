@@ -27,8 +27,8 @@ pub struct Refinement<T> {
 ///
 /// Owns the pattern, the symbolic analysis, the factor (sizes in their docs), the
 /// upper-triangle values (`nnz` of the pattern) and five work vectors of the matrix order
-/// $n$; [`Kkt::set_equilibration`] adds the scaling's four buffers (three of order $n$, one
-/// of `nnz`). Everything is allocated at setup ([`Kkt::new`], [`Kkt::set_equilibration`]);
+/// $n$; [`Kkt::set_equilibration`] adds the scaling's three buffers of order $n$ (the
+/// scaled values are not stored: the factorization scales each entry as it reads it). Everything is allocated at setup ([`Kkt::new`], [`Kkt::set_equilibration`]);
 /// factorizing and solving allocate nothing. The factor is made for this very analysis, so the two always pair.
 #[derive(Clone, Debug)]
 pub struct Kkt<T> {
@@ -129,7 +129,6 @@ impl<T: Real> Kkt<T> {
         self.equilibration = on.then(|| Equilibration {
             d: vec![T::ONE; n],
             largest: vec![T::ZERO; n],
-            values: vec![T::ZERO; self.pattern.nnz()],
             rhs: vec![T::ZERO; n],
         });
     }
@@ -162,7 +161,8 @@ impl<T: Real> Kkt<T> {
     /// the primal block has a zero diagonal).
     #[must_use]
     pub fn primal_scale(&self) -> T {
-        primal_scale(&self.pattern, &self.values)
+        let p = &self.pattern;
+        primal_scale(p, |k| self.values[p.diagonal_slot(k)])
     }
 
     /// Numeric factorization on the reused symbolic analysis; pivot $k$ with
@@ -173,21 +173,27 @@ impl<T: Real> Kkt<T> {
     pub fn factorize(&mut self, epsilon_rel: T, delta_rel: T) -> FactorOutcome {
         self.factorizations += 1;
         let p = &self.pattern;
-        let values: &[T] = match &mut self.equilibration {
-            Some(e) => {
-                e.update(p, &self.values);
-                &e.values
-            }
-            None => &self.values,
+        let values = &self.values;
+        let scaling = self.equilibration.as_mut().map(|e| {
+            e.update(p, values);
+            &e.d[..]
+        });
+        // Entry `slot` of column `c` at row `r` (original order), scaled if equilibrated.
+        let scaled = |slot: usize, r: usize, c: usize| match scaling {
+            Some(d) => d[r] * values[slot] * d[c],
+            None => values[slot],
         };
-        let primal = primal_scale(p, values);
+        let primal = primal_scale(p, |k| scaled(p.diagonal_slot(k), k, k));
         for (new, &old) in self.symbolic.perm.iter().enumerate() {
             let old = old as usize;
             self.pivot_scale[new] = if old < p.dofs {
                 primal
             } else {
-                let column = &values[p.col_ptr[old] as usize..p.diagonal_slot(old)];
-                let sum = column.iter().fold(T::ZERO, |acc, &v| acc + v * v);
+                let column = p.col_ptr[old] as usize..p.diagonal_slot(old);
+                let sum = column.fold(T::ZERO, |acc, slot| {
+                    let v = scaled(slot, p.row_idx[slot] as usize, old);
+                    acc + v * v
+                });
                 if sum > T::ZERO {
                     sum / primal
                 } else {
@@ -198,9 +204,9 @@ impl<T: Real> Kkt<T> {
         self.factor.factor_paired(
             &self.symbolic,
             values,
+            scaling,
             &self.pivot_scale,
-            epsilon_rel,
-            delta_rel,
+            (epsilon_rel, delta_rel),
         )
     }
 
@@ -344,11 +350,11 @@ pub fn max_abs<T: Real>(v: &[T]) -> T {
     m
 }
 
-/// Largest primal diagonal magnitude of the upper-triangle `values` (1 if zero).
-fn primal_scale<T: Real>(p: &KktPattern, values: &[T]) -> T {
+/// Largest primal diagonal magnitude, `diagonal(k)` for $k$ below `p.dofs` (1 if zero).
+fn primal_scale<T: Real>(p: &KktPattern, diagonal: impl Fn(usize) -> T) -> T {
     let mut scale = T::ZERO;
     for k in 0..p.dofs {
-        let v = values[p.diagonal_slot(k)];
+        let v = diagonal(k);
         let v = if v < T::ZERO { -v } else { v };
         if v > scale {
             scale = v;
@@ -360,18 +366,20 @@ fn primal_scale<T: Real>(p: &KktPattern, values: &[T]) -> T {
 /// Passes of Ruiz's scaling per factorization ([`Kkt::set_equilibration`]).
 pub const RUIZ_PASSES: usize = 4;
 
-/// The scaling $D$ and the scaled values of [`Kkt::set_equilibration`].
+/// The scaling $D$ of [`Kkt::set_equilibration`] and its work vectors (order $n$ each).
 #[derive(Clone, Debug)]
 struct Equilibration<T> {
+    /// $D$, in the original order.
     d: Vec<T>,
+    /// Largest magnitude per row during a pass.
     largest: Vec<T>,
-    values: Vec<T>,
+    /// $D b$ for a solve.
     rhs: Vec<T>,
 }
 
 impl<T: Real> Equilibration<T> {
     /// Recomputes $D$ for `values` (Ruiz: each pass divides $d_i$ by the square root of the
-    /// largest magnitude in row $i$ of $D K D$) and writes $D K D$ into `self.values`.
+    /// largest magnitude in row $i$ of $D K D$).
     fn update(&mut self, p: &KktPattern, values: &[T]) {
         self.d.iter_mut().for_each(|d| *d = T::ONE);
         for _ in 0..RUIZ_PASSES {
@@ -393,17 +401,6 @@ impl<T: Real> Equilibration<T> {
                 if m > T::ZERO && m.is_finite() {
                     *d /= folio_kernels::math::sqrt(m);
                 }
-            }
-        }
-        for c in 0..p.order() {
-            let range = p.col_ptr[c] as usize..p.col_ptr[c + 1] as usize;
-            let rows = &p.row_idx[range.clone()];
-            for ((out, &value), &r) in self.values[range.clone()]
-                .iter_mut()
-                .zip(&values[range])
-                .zip(rows)
-            {
-                *out = self.d[r as usize] * value * self.d[c];
             }
         }
     }

@@ -5,9 +5,10 @@
 //! $$K = \begin{bmatrix} M/h^2 + \nabla^2 V\ (+\textstyle\sum_l \lambda_l \nabla^2 C_l) & \nabla C^\top \cr \nabla C & 0 \end{bmatrix}$$
 //! (DESIGN.md "Time step", seed `000_…` eq. 3-4) is stored as its upper triangle in compressed
 //! sparse columns with sorted rows and every diagonal entry present. Each term's local
-//! Hessian entry and Jacobian entry has a precomputed slot (index into the value array) or
-//! [`NONE`] when it falls on an eliminated coordinate or in the lower triangle. Assembly is
-//! then a scatter through these maps: no search, no allocation.
+//! Hessian entry of its upper local triangle ($p \le q$, which with its mirror $(q, p)$ covers
+//! the term's block) and each Jacobian entry has a precomputed slot (index into the value
+//! array) or [`NONE`] when it falls on an eliminated coordinate. Assembly is then a scatter
+//! through these maps: no search, no allocation.
 
 use alloc::vec::Vec;
 use core::ops::Range;
@@ -33,7 +34,11 @@ pub(crate) struct Family {
     pub has_hessian: bool,
     /// Offset into [`KktPattern::local_dofs`] (`3 N` entries per term).
     pub dof_offset: usize,
-    /// Offset into [`KktPattern::hessian_slots`] (`9 N^2` per term, if `has_hessian`).
+    /// Whether the Hessian slots are of the upper local triangle only (see
+    /// [`Family::hessian_per_term`]); `false` when a term repeats a dof, whose mirrored
+    /// entries then land on one slot and keep the full local block's order.
+    pub hessian_upper: bool,
+    /// Offset into [`KktPattern::hessian_slots`] ([`Family::hessian_per_term`] per term).
     pub hessian_offset: usize,
     /// Offset into [`KktPattern::jacobian_slots`] (`3 N R` per term).
     pub jacobian_offset: usize,
@@ -41,11 +46,29 @@ pub(crate) struct Family {
     pub first_row: usize,
 }
 
+impl Family {
+    /// Hessian slots per term: none without a Hessian; $3N(3N + 1)/2$ for the upper local
+    /// triangle, pairs $(p, q)$ with $p \le q$ row by row, each the slot of the stored
+    /// (upper) entry of dofs $(a_p, a_q)$; or, for a family with a repeated dof, $9N^2$ for
+    /// the full local block, row by row, with [`NONE`] for a lower entry.
+    #[inline]
+    #[must_use]
+    pub fn hessian_per_term(&self) -> usize {
+        let s = 3 * self.nodes;
+        match (self.has_hessian, self.hessian_upper) {
+            (false, _) => 0,
+            (true, true) => s * (s + 1) / 2,
+            (true, false) => s * s,
+        }
+    }
+}
+
 /// The upper-triangle KKT pattern of a model and every term's scatter map.
 ///
 /// Owns the coordinate numbering (`3 * nodes` and `dofs` entries), the compressed upper
 /// columns (`order + 1` pointers, `nnz` rows) and the term maps (`3 N` local dofs per term,
-/// `9 N^2` Hessian slots per term with a Hessian, `3 N R` Jacobian slots per term), all
+/// $3N(3N + 1)/2$ Hessian slots per term with a Hessian, the upper local triangle, or
+/// $9N^2$ in a family whose terms repeat a dof; `3 N R` Jacobian slots per term), all
 /// allocated by [`KktPattern::build`] at setup. Fields are read through the accessors.
 #[derive(Clone, Debug, Default)]
 pub struct KktPattern {
@@ -177,7 +200,6 @@ impl KktPattern {
             local_dofs: Vec::new(),
             entries: Vec::new(),
             rows: 0,
-            hessian_len: 0,
             jacobian_len: 0,
             error: None,
         };
@@ -185,8 +207,9 @@ impl KktPattern {
         if let Some(e) = declare.error {
             return Err(e);
         }
-        let (families, local_dofs, rows) = (declare.families, declare.local_dofs, declare.rows);
-        let (hessian_len, jacobian_len) = (declare.hessian_len, declare.jacobian_len);
+        let (families, mut local_dofs, rows) = (declare.families, declare.local_dofs, declare.rows);
+        local_dofs.shrink_to_fit();
+        let jacobian_len = declare.jacobian_len;
         let dofs = coordinate_of.len();
         let (col_ptr, row_idx) = compress(declare.entries, dofs + rows)?;
         let mut pattern = Self {
@@ -198,7 +221,7 @@ impl KktPattern {
             row_idx,
             families,
             local_dofs,
-            hessian_slots: Vec::with_capacity(hessian_len),
+            hessian_slots: Vec::new(),
             jacobian_slots: Vec::with_capacity(jacobian_len),
             with_constraint_hessian,
         };
@@ -216,26 +239,45 @@ impl KktPattern {
         }
     }
 
-    /// Fills the Hessian and Jacobian slot maps from the local dofs.
+    /// Chooses each family's Hessian layout and fills the slot maps ([`KktPattern::fill_maps`]).
     fn fill_slots(&mut self) {
-        let families = core::mem::take(&mut self.families);
-        let mut families_out = Vec::with_capacity(families.len());
-        for mut f in families {
-            let with_hessian = f.has_hessian;
+        let mut families = core::mem::take(&mut self.families);
+        for f in &mut families {
+            let s = 3 * f.nodes;
+            f.hessian_upper =
+                (0..f.terms).all(|t| !repeats(&self.local_dofs[f.dof_offset + t * s..][..s]));
+        }
+        self.families = families;
+        self.fill_maps();
+    }
+
+    /// Fills the Hessian and Jacobian slot maps from the local dofs, in each family's
+    /// layout ([`Family::hessian_per_term`]).
+    pub(crate) fn fill_maps(&mut self) {
+        let mut families = core::mem::take(&mut self.families);
+        self.hessian_slots.clear();
+        self.jacobian_slots.clear();
+        let hessian_len = families
+            .iter()
+            .map(|f| f.terms * f.hessian_per_term())
+            .sum();
+        self.hessian_slots.reserve_exact(hessian_len);
+        for f in &mut families {
             f.hessian_offset = self.hessian_slots.len();
             f.jacobian_offset = self.jacobian_slots.len();
-            let n = f.nodes;
+            let s = 3 * f.nodes;
             for t in 0..f.terms {
-                let base = f.dof_offset + t * 3 * n;
-                if with_hessian {
-                    for p in 0..3 * n {
-                        for q in 0..3 * n {
+                let base = f.dof_offset + t * s;
+                if f.has_hessian {
+                    for p in 0..s {
+                        let from = if f.hessian_upper { p } else { 0 };
+                        for q in from..s {
                             let a = self.local_dofs[base + p];
                             let b = self.local_dofs[base + q];
-                            let slot = if a == NONE || b == NONE || a > b {
+                            let slot = if a == NONE || b == NONE || (a > b && !f.hessian_upper) {
                                 NONE
                             } else {
-                                self.slot(a, b)
+                                self.slot(a.min(b), a.max(b))
                             };
                             self.hessian_slots.push(slot);
                         }
@@ -243,17 +285,23 @@ impl KktPattern {
                 }
                 for r in 0..f.rows {
                     let col = (self.dofs + f.first_row + t * f.rows + r) as u32;
-                    for p in 0..3 * n {
+                    for p in 0..s {
                         let a = self.local_dofs[base + p];
                         let slot = if a == NONE { NONE } else { self.slot(a, col) };
                         self.jacobian_slots.push(slot);
                     }
                 }
             }
-            families_out.push(f);
         }
-        self.families = families_out;
+        self.families = families;
     }
+}
+
+/// Whether a term's local dofs name one dof twice (eliminated coordinates aside).
+fn repeats(dofs: &[u32]) -> bool {
+    dofs.iter()
+        .enumerate()
+        .any(|(p, &a)| a != NONE && dofs[p + 1..].contains(&a))
 }
 
 /// The declaring visitor: numbers rows, records local dofs and the pattern's entries.
@@ -267,7 +315,6 @@ struct Declare<'a> {
     /// `(col << 32) | row` keys of upper-triangle entries.
     entries: Vec<u64>,
     rows: usize,
-    hessian_len: usize,
     jacobian_len: usize,
     error: Option<SolverError>,
 }
@@ -305,7 +352,6 @@ impl Declare<'_> {
             self.term_entries(base..self.local_dofs.len(), rows, with_hessian);
             self.rows += rows;
         }
-        self.hessian_len += if with_hessian { terms * 9 * N * N } else { 0 };
         self.jacobian_len += terms * 3 * N * rows;
         self.families.push(Family {
             terms,
@@ -313,6 +359,7 @@ impl Declare<'_> {
             rows,
             has_hessian: with_hessian,
             dof_offset,
+            hessian_upper: true,
             hessian_offset: 0,
             jacobian_offset: 0,
             first_row,
@@ -430,8 +477,9 @@ mod tests {
         }
     }
 
-    /// Every term's Hessian and Jacobian scatter index lands on the upper-triangle slot of
-    /// its local dofs, or is [`NONE`] for an eliminated coordinate or a lower entry.
+    /// Every term's Hessian scatter index (upper local triangle) and Jacobian scatter index
+    /// lands on the upper-triangle slot of its local dofs, or is [`NONE`] for an eliminated
+    /// coordinate.
     #[test]
     fn scatter_maps_land_on_their_entries() {
         let chain = Chain::new(5);
@@ -442,18 +490,28 @@ mod tests {
             for (f, terms) in p.families.iter().zip(nodes) {
                 assert_eq!((f.terms, f.nodes), (terms.len(), 2));
                 assert_eq!(f.has_hessian, f.rows == 0 || hessian);
+                assert!(f.hessian_upper, "no term repeats a dof");
+                assert_eq!(f.hessian_per_term(), if f.has_hessian { 21 } else { 0 });
+                let len = f.terms * f.hessian_per_term();
+                assert!(f.hessian_offset + len <= p.hessian_slots.len());
                 for (t, term) in terms.iter().enumerate() {
                     let local = &p.local_dofs[f.dof_offset + 6 * t..][..6];
                     let expected: [u32; 6] =
                         core::array::from_fn(|q| p.dof_of[3 * term[q / 3] as usize + q % 3]);
                     assert_eq!(local, expected);
                     for (a, &da) in local.iter().enumerate() {
+                        // The upper local triangle, row by row: (a, b) for b >= a.
+                        let row = f.hessian_offset + 21 * t + (0..a).map(|i| 6 - i).sum::<usize>();
                         for (b, &db) in local.iter().enumerate().filter(|_| f.has_hessian) {
-                            let s = p.hessian_slots[f.hessian_offset + 36 * t + 6 * a + b];
-                            if da == NONE || db == NONE || da > db {
+                            if b < a {
+                                continue;
+                            }
+                            let s = p.hessian_slots[row + b - a];
+                            if da == NONE || db == NONE {
                                 assert_eq!(s, NONE);
                             } else {
-                                assert!(holds(&p, s, da, db), "Hessian ({a}, {b}) of term {t}");
+                                let (lo, hi) = (da.min(db), da.max(db));
+                                assert!(holds(&p, s, lo, hi), "Hessian ({a}, {b}) of term {t}");
                             }
                         }
                         for r in 0..f.rows {

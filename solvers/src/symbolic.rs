@@ -1,25 +1,30 @@
 //! The symbolic $LDL^\top$ analysis: indices only, computed once per topology.
 //!
 //! From the upper KKT pattern and an [`Ordering`] it builds the permuted column lists with
-//! their source slots, the elimination tree (Liu's algorithm with path compression), the
-//! column structure of $L$ and, for every row $k$ of $L$, the list of its nonzero columns
-//! $j < k$ with the exact position of $L_{kj}$ in column $j$'s storage. The numeric phase
-//! ([`crate::ldlt`]) then runs an up-looking factorization without walking the tree or
-//! searching: row $k$ is a sparse triangular solve over a precomputed list.
+//! their source slots, the elimination tree (Liu's algorithm with path compression) and the
+//! column structure of $L$. It stores no row lists: the numeric phase ([`crate::ldlt`])
+//! finds each row's pattern as it runs, as the up-looking $LDL^\top$ of Davis (LDL, 2005) and
+//! QDLDL do: the reach of row $k$'s entries up the elimination tree. The stored indices are
+//! `u16` when the order and the pattern's size allow it, `u32` otherwise ([`Index`]).
 
 use alloc::vec;
 use alloc::vec::Vec;
 
+use crate::index::{Index, Indices};
 use crate::ordering::{Ordering, permutation};
 use crate::pattern::{KktPattern, NONE};
 
 /// Indices-only analysis of a KKT pattern of order $n$ (see module docs).
 ///
-/// Owns the permutation, the permuted upper matrix's structure and the structure of $L$:
-/// $O(n + \mathrm{nnz}(A) + \mathrm{nnz}(L))$ 32-bit indices, all allocated by
-/// [`Symbolic::analyse`] at setup (once per topology). Nothing here changes afterwards, and
-/// the numeric phase ([`crate::ldlt::Ldlt`]) allocates nothing. Fields are read through the
-/// accessors; an [`crate::ldlt::Ldlt`] made for one analysis refuses any other.
+/// Owns the permutation, the pivot signs and the elimination tree ($n$ entries each), the
+/// permuted upper matrix's structure ($n + 1$ column pointers, and a row and a value slot per
+/// stored entry) and the structure of $L$ ($n + 1$ column pointers, a row index per
+/// nonzero). Pointers and the permutation are 32-bit; rows and slots are 16-bit when
+/// $n \le 65536$ and $\mathrm{nnz}(A) \le 65536$, 32-bit otherwise ([`Symbolic::indices`]). All
+/// of it is allocated by [`Symbolic::analyse`] at setup (once per topology). Nothing here
+/// changes afterwards, and the numeric phase ([`crate::ldlt::Ldlt`]) allocates nothing.
+/// Fields are read through the accessors; an [`crate::ldlt::Ldlt`] made for one analysis
+/// refuses any other.
 #[derive(Clone, Debug)]
 pub struct Symbolic {
     /// Matrix order.
@@ -31,10 +36,6 @@ pub struct Symbolic {
     pub(crate) signs: Vec<i8>,
     /// Column pointers of the permuted upper matrix.
     pub(crate) a_ptr: Vec<u32>,
-    /// Row (new index) of each permuted upper entry.
-    pub(crate) a_row: Vec<u32>,
-    /// Slot in the KKT value array of each permuted upper entry.
-    pub(crate) a_slot: Vec<u32>,
     /// Constraint rows eliminated before any unknown they couple to: their pivot is exactly
     /// 0 whatever the values (an empty row of $L$ and a zero diagonal), so the numeric phase
     /// regularizes them statically and does not count them.
@@ -43,16 +44,31 @@ pub struct Symbolic {
     pub(crate) parent: Vec<u32>,
     /// Column pointers of the strictly lower part of $L$.
     pub(crate) l_ptr: Vec<u32>,
-    /// Row indices of $L$ (ascending within a column).
-    pub(crate) l_row: Vec<u32>,
-    /// Pointers into `row_col` / `row_pos` per row of $L$.
-    pub(crate) row_ptr: Vec<u32>,
-    /// Nonzero columns $j$ of each row of $L$, ascending.
-    pub(crate) row_col: Vec<u32>,
-    /// Position of $L_{kj}$ in `l_row` / the numeric values.
-    pub(crate) row_pos: Vec<u32>,
+    /// The rows and slots, in the width chosen by [`Symbolic::analyse`].
+    pub(crate) structure: Structure,
     /// Hash of everything the numeric phase reads (see [`Symbolic::fingerprint`]).
     pub(crate) fingerprint: u64,
+}
+
+/// The index arrays of a [`Symbolic`] in one of the two widths.
+#[derive(Clone, Debug)]
+pub(crate) enum Structure {
+    /// `u16` rows and slots.
+    Narrow(Arrays<u16>),
+    /// `u32` rows and slots.
+    Wide(Arrays<u32>),
+}
+
+/// The index arrays of a [`Symbolic`]: `nnz(A)` rows and slots of the permuted upper
+/// matrix, `nnz(L)` rows of $L$.
+#[derive(Clone, Debug)]
+pub(crate) struct Arrays<I> {
+    /// Row (new index) of each permuted upper entry.
+    pub a_row: Vec<I>,
+    /// Slot in the KKT value array of each permuted upper entry.
+    pub a_slot: Vec<I>,
+    /// Row indices of $L$ (ascending within a column).
+    pub l_row: Vec<I>,
 }
 
 impl Symbolic {
@@ -61,34 +77,55 @@ impl Symbolic {
     pub fn analyse(pattern: &KktPattern, ordering: Ordering) -> Self {
         let n = pattern.order();
         let perm = permutation(pattern, ordering);
+        let signs: Vec<i8> = (0..n).map(|k| signs_of(&perm, pattern.dofs, k)).collect();
+        if n <= u16::MAX as usize + 1 && pattern.nnz() <= u16::MAX as usize + 1 {
+            Self::build::<u16>(pattern, perm, signs, Structure::Narrow)
+        } else {
+            Self::build::<u32>(pattern, perm, signs, Structure::Wide)
+        }
+    }
+
+    /// [`Symbolic::analyse`] with indices of type `I` (each at most `I::MAX`), wrapped by
+    /// `wrap`.
+    pub(crate) fn build<I: Index>(
+        pattern: &KktPattern,
+        perm: Vec<u32>,
+        signs: Vec<i8>,
+        wrap: fn(Arrays<I>) -> Structure,
+    ) -> Self {
+        let n = pattern.order();
         let mut inverse = vec![0u32; n];
         for (new, &old) in perm.iter().enumerate() {
             inverse[old as usize] = new as u32;
         }
-        let signs: Vec<i8> = (0..n).map(|k| signs_of(&perm, pattern.dofs, k)).collect();
-
-        let (a_ptr, a_row, a_slot) = permuted_upper(pattern, &inverse);
+        let (a_ptr, a_row, a_slot) = permuted_upper::<I>(pattern, &inverse);
+        drop(inverse);
         let parent = elimination_tree(n, &a_ptr, &a_row);
-        let (row_ptr, row_col, col_count) = row_patterns(&a_ptr, &a_row, &parent);
-        let structural_zero = (0..n)
-            .map(|k| signs_of(&perm, pattern.dofs, k) < 0 && row_ptr[k] == row_ptr[k + 1])
-            .collect();
-        let (l_ptr, l_row, row_pos) = column_layout(&row_ptr, &row_col, col_count);
-        let fingerprint = fingerprint(&[&perm, &a_ptr, &a_row, &a_slot, &l_ptr], &signs);
+        let (l_ptr, row_empty) = column_counts(&a_ptr, &a_row, &parent);
+        let structural_zero = (0..n).map(|k| signs[k] < 0 && row_empty[k]).collect();
+        drop(row_empty);
+        let l_row = column_rows::<I>(&a_ptr, &a_row, &parent, &l_ptr);
+        let fingerprint = Fingerprint::new()
+            .words(&perm, |&w| w)
+            .words(&a_ptr, |&w| w)
+            .words(&a_row, |w| w.get() as u32)
+            .words(&a_slot, |w| w.get() as u32)
+            .words(&l_ptr, |&w| w)
+            .all(&signs, |&s| u32::from(s > 0))
+            .finish();
         Self {
             n,
             perm,
             signs,
             structural_zero,
             a_ptr,
-            a_row,
-            a_slot,
             parent,
             l_ptr,
-            l_row,
-            row_ptr,
-            row_col,
-            row_pos,
+            structure: wrap(Arrays {
+                a_row,
+                a_slot,
+                l_row,
+            }),
             fingerprint,
         }
     }
@@ -142,11 +179,14 @@ impl Symbolic {
     }
 
     /// Row indices (new order) of the strictly lower part of $L$, [`Symbolic::nnz_l`]
-    /// entries, ascending within each column.
+    /// entries, ascending within each column, in the analysis's index width.
     #[inline]
     #[must_use]
-    pub fn l_row_idx(&self) -> &[u32] {
-        &self.l_row
+    pub fn l_row_idx(&self) -> Indices<'_> {
+        match &self.structure {
+            Structure::Narrow(a) => Indices::U16(&a.l_row),
+            Structure::Wide(a) => Indices::U32(&a.l_row),
+        }
     }
 
     /// Nonzeros of the strictly lower part of $L$ (the length of the numeric factor's
@@ -154,7 +194,18 @@ impl Symbolic {
     #[inline]
     #[must_use]
     pub fn nnz_l(&self) -> usize {
-        self.l_row.len()
+        self.l_ptr[self.n] as usize
+    }
+
+    /// The analysis's index width and the bytes of its index arrays (everything but the
+    /// permutation, the signs, the tree and the two pointer arrays): $L$'s rows, and the
+    /// permuted upper matrix's rows and value slots.
+    #[must_use]
+    pub fn indices(&self) -> (IndexWidth, usize) {
+        match &self.structure {
+            Structure::Narrow(a) => (IndexWidth::U16, 2 * (a.l_row.len() + 2 * a.a_row.len())),
+            Structure::Wide(a) => (IndexWidth::U32, 4 * (a.l_row.len() + 2 * a.a_row.len())),
+        }
     }
 
     /// A 64-bit hash (FNV-1a over the 32-bit words) of the permutation, the permuted upper
@@ -182,10 +233,20 @@ impl Symbolic {
     }
 }
 
+/// The index width [`Symbolic::analyse`] chose.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum IndexWidth {
+    /// Two bytes per stored row and slot.
+    U16,
+    /// Four bytes per stored row and slot.
+    U32,
+}
+
 /// The upper triangle of $P A P^\top$ in compressed columns: `(a_ptr, a_row, a_slot)`, with
 /// `n + 1` column pointers and, per entry, its row (new index) and its slot in the
 /// pattern's value array. Entry $(r, c)$ lands in column $\max(r', c')$ at row $\min$.
-fn permuted_upper(pattern: &KktPattern, inverse: &[u32]) -> (Vec<u32>, Vec<u32>, Vec<u32>) {
+fn permuted_upper<I: Index>(pattern: &KktPattern, inverse: &[u32]) -> (Vec<u32>, Vec<I>, Vec<I>) {
     let n = pattern.order();
     let mut a_ptr = vec![0u32; n + 1];
     for c in 0..n {
@@ -196,90 +257,69 @@ fn permuted_upper(pattern: &KktPattern, inverse: &[u32]) -> (Vec<u32>, Vec<u32>,
     }
     prefix_sum(&mut a_ptr);
     let mut next = a_ptr.clone();
-    let mut a_row = vec![0u32; pattern.nnz()];
-    let mut a_slot = vec![0u32; pattern.nnz()];
+    let mut a_row = vec![I::new(0); pattern.nnz()];
+    let mut a_slot = vec![I::new(0); pattern.nnz()];
     for c in 0..n {
         for s in pattern.col_ptr[c] as usize..pattern.col_ptr[c + 1] as usize {
             let (i, j) = (inverse[pattern.row_idx[s] as usize], inverse[c]);
             let col = i.max(j) as usize;
             let at = next[col] as usize;
-            a_row[at] = i.min(j);
-            a_slot[at] = s as u32;
+            a_row[at] = I::new(i.min(j) as usize);
+            a_slot[at] = I::new(s);
             next[col] += 1;
         }
     }
     (a_ptr, a_row, a_slot)
 }
 
-/// Row patterns of $L$: the etree paths from each entry of column $k$ up to $k$, as
-/// `(row_ptr, row_col, col_count)`: `n + 1` row pointers, each row's columns ascending,
-/// and the entry count of each column of $L$ at `col_count[j + 1]`. Counted first so that
-/// the lists are allocated at their exact length (the factor's index arrays are the largest
-/// allocation on a microcontroller).
-fn row_patterns(a_ptr: &[u32], a_row: &[u32], parent: &[u32]) -> (Vec<u32>, Vec<u32>, Vec<u32>) {
+/// Column pointers of $L$ and the empty rows: `(l_ptr, row_empty)`, with `n + 1` pointers
+/// (the prefix sum of each column's count of row-pattern entries) and, per row, whether its
+/// pattern is empty.
+fn column_counts<I: Index>(a_ptr: &[u32], a_row: &[I], parent: &[u32]) -> (Vec<u32>, Vec<bool>) {
     let n = parent.len();
-    let mut row_ptr = vec![0u32; n + 1];
+    let mut l_ptr = vec![0u32; n + 1];
+    let mut row_empty = vec![true; n];
     let mut mark = vec![NONE; n];
-    for k in 0..n {
-        let mut count = 0;
-        row_walk(k, a_ptr, a_row, parent, &mut mark, |_| count += 1);
-        row_ptr[k + 1] = row_ptr[k] + count;
-    }
-    let mut row_col = vec![0u32; row_ptr[n] as usize];
-    let mut col_count = vec![0u32; n + 1];
-    mark.iter_mut().for_each(|m| *m = NONE);
-    for (k, &start) in row_ptr.iter().enumerate().take(n) {
-        let start = start as usize;
-        let mut at = start;
+    for (k, empty) in row_empty.iter_mut().enumerate() {
         row_walk(k, a_ptr, a_row, parent, &mut mark, |j| {
-            row_col[at] = j as u32;
-            col_count[j + 1] += 1;
-            at += 1;
+            l_ptr[j + 1] += 1;
+            *empty = false;
         });
-        row_col[start..at].sort_unstable();
     }
-    (row_ptr, row_col, col_count)
+    prefix_sum(&mut l_ptr);
+    (l_ptr, row_empty)
 }
 
-/// Column storage of $L$ from its row patterns: `(l_ptr, l_row, row_pos)`, with `n + 1`
-/// column pointers (the prefix sum of `col_count`), the rows of each column ascending, and
-/// for each row-pattern entry the position of $L_{kj}$ in that storage.
-fn column_layout(
-    row_ptr: &[u32],
-    row_col: &[u32],
-    col_count: Vec<u32>,
-) -> (Vec<u32>, Vec<u32>, Vec<u32>) {
-    let mut l_ptr = col_count;
-    prefix_sum(&mut l_ptr);
-    let mut fill = l_ptr.clone();
-    let mut l_row = vec![0u32; row_col.len()];
-    let mut row_pos = vec![0u32; row_col.len()];
-    for k in 0..row_ptr.len() - 1 {
-        for idx in row_ptr[k] as usize..row_ptr[k + 1] as usize {
-            let j = row_col[idx] as usize;
-            let pos = fill[j];
+/// Row indices of $L$, ascending within each column: row $k$ is appended to every column of
+/// its pattern, rows in increasing order.
+fn column_rows<I: Index>(a_ptr: &[u32], a_row: &[I], parent: &[u32], l_ptr: &[u32]) -> Vec<I> {
+    let n = parent.len();
+    let mut fill = l_ptr[..n].to_vec();
+    let mut l_row = vec![I::new(0); l_ptr[n] as usize];
+    let mut mark = vec![NONE; n];
+    for k in 0..n {
+        row_walk(k, a_ptr, a_row, parent, &mut mark, |j| {
+            l_row[fill[j] as usize] = I::new(k);
             fill[j] += 1;
-            l_row[pos as usize] = k as u32;
-            row_pos[idx] = pos;
-        }
+        });
     }
-    (l_ptr, l_row, row_pos)
+    l_row
 }
 
 /// Calls `visit` on every column $j < k$ of row $k$ of $L$: the elimination-tree paths from
 /// the entries of column $k$ of the permuted upper matrix up to $k$ (`mark` holds, per
 /// column, the last row that visited it).
-fn row_walk(
+fn row_walk<I: Index>(
     k: usize,
     a_ptr: &[u32],
-    a_row: &[u32],
+    a_row: &[I],
     parent: &[u32],
     mark: &mut [u32],
     mut visit: impl FnMut(usize),
 ) {
     mark[k] = k as u32;
     for &i in &a_row[a_ptr[k] as usize..a_ptr[k + 1] as usize] {
-        let mut j = i as usize;
+        let mut j = i.get();
         while mark[j] != k as u32 {
             mark[j] = k as u32;
             visit(j);
@@ -293,22 +333,42 @@ fn signs_of(perm: &[u32], dofs: usize, k: usize) -> i8 {
     if (perm[k] as usize) < dofs { 1 } else { -1 }
 }
 
-/// FNV-1a over the 32-bit words of `arrays` and the pivot `signs`, each array preceded by
-/// its length (so that moving a word from one array to the next changes the hash).
-fn fingerprint(arrays: &[&[u32]], signs: &[i8]) -> u64 {
-    const OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
-    const PRIME: u64 = 0x0000_0100_0000_01b3;
-    let words = arrays
-        .iter()
-        .flat_map(|a| core::iter::once(a.len() as u32).chain(a.iter().copied()))
-        .chain(signs.iter().map(|&s| u32::from(s > 0)));
-    let mut hash = OFFSET;
-    for word in words {
-        for byte in word.to_le_bytes() {
-            hash = (hash ^ u64::from(byte)).wrapping_mul(PRIME);
-        }
+/// FNV-1a over 32-bit words ([`Symbolic::fingerprint`]).
+struct Fingerprint(u64);
+
+impl Fingerprint {
+    /// The FNV-1a offset basis.
+    fn new() -> Self {
+        Self(0xcbf2_9ce4_8422_2325)
     }
-    hash
+
+    /// Hashes `array`'s length, then its words through `word` (the length first, so that
+    /// moving a word from one array to the next changes the hash).
+    fn words<W>(self, array: &[W], word: impl Fn(&W) -> u32) -> Self {
+        self.word(array.len() as u32).all(array, word)
+    }
+
+    /// Hashes `array`'s words through `word`, without its length.
+    fn all<W>(mut self, array: &[W], word: impl Fn(&W) -> u32) -> Self {
+        for w in array {
+            self = self.word(word(w));
+        }
+        self
+    }
+
+    /// Hashes one word, its bytes little-endian.
+    fn word(mut self, word: u32) -> Self {
+        const PRIME: u64 = 0x0000_0100_0000_01b3;
+        for byte in word.to_le_bytes() {
+            self.0 = (self.0 ^ u64::from(byte)).wrapping_mul(PRIME);
+        }
+        self
+    }
+
+    /// The hash.
+    fn finish(self) -> u64 {
+        self.0
+    }
 }
 
 /// In-place exclusive prefix sum of counts stored at `[1..]`.
@@ -320,12 +380,12 @@ fn prefix_sum(ptr: &mut [u32]) {
 
 /// Elimination tree of a symmetric matrix from its upper columns (Liu, with path
 /// compression through `ancestor`).
-fn elimination_tree(n: usize, a_ptr: &[u32], a_row: &[u32]) -> Vec<u32> {
+fn elimination_tree<I: Index>(n: usize, a_ptr: &[u32], a_row: &[I]) -> Vec<u32> {
     let mut parent = vec![NONE; n];
     let mut ancestor = vec![NONE; n];
     for k in 0..n {
         for &i in &a_row[a_ptr[k] as usize..a_ptr[k + 1] as usize] {
-            let mut r = i as usize;
+            let mut r = i.get();
             while r < k {
                 let next = ancestor[r];
                 ancestor[r] = k as u32;
