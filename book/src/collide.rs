@@ -90,6 +90,7 @@ impl<T: Real> Book<T> {
         for _ in 0..max_rounds {
             let c = self.resolve_contacts();
             total.tested += c.tested;
+            total.bounds_tested += c.bounds_tested;
             if c.resolved == 0 {
                 break;
             }
@@ -207,17 +208,37 @@ impl<T: Real> Book<T> {
             self.resolve_block_contacts(&mut c);
         }
         if self.active.is_some() {
-            let n = self.terms.nodes;
-            for w in 0..self.page_walls() {
-                let Some(wall) = self.page_wall(w) else {
-                    continue;
-                };
-                for node in n.free_page_nodes() {
-                    c.record(self.push_node(node, &wall));
+            self.resolve_page_contacts(&mut c);
+        }
+        c
+    }
+
+    /// The active page's part of [`Book::resolve_contacts`]: each wall in turn against the
+    /// free page nodes in node order, the columns the wall cannot reach skipped (the broad
+    /// phase, [`crate::broad_phase::PageBroadPhase`]).
+    fn resolve_page_contacts(&mut self, c: &mut Contacts<T>) {
+        let n = self.terms.nodes;
+        // Taken out for the loop (no allocation: the default holds empty vectors).
+        let mut broad = core::mem::take(&mut self.broad);
+        broad.bound(n, &self.state.x);
+        for w in 0..self.page_walls() {
+            let Some(wall) = self.page_wall(w) else {
+                continue;
+            };
+            c.bounds_tested += broad.select(&wall);
+            for j in 0..n.grid.nz {
+                for k in 0..broad.near().len() {
+                    let i = broad.near()[k];
+                    let node = n.page(i, j);
+                    let depth = self.push_node(node, &wall);
+                    if depth.is_some() {
+                        broad.include(i, self.state.x[node]);
+                    }
+                    c.record(depth);
                 }
             }
         }
-        c
+        self.broad = broad;
     }
 
     /// Deepest penetration of an active-page node (bound column excepted) into a block's
@@ -242,6 +263,9 @@ impl<T: Real> Book<T> {
         Some(worst)
     }
 }
+
+#[cfg(test)]
+mod broad_phase_tests;
 
 #[cfg(test)]
 mod tests {

@@ -27,6 +27,7 @@
 extern crate alloc;
 
 pub mod bookmark;
+mod broad_phase;
 mod collide;
 pub mod effects;
 pub mod error;

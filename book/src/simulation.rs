@@ -14,6 +14,7 @@ use folio_geometry::{BlockSide, Contacts, QuadGrid};
 use folio_kernels::{Real, Vec3Ops, math};
 
 use super::bookmark::{Flip, History};
+use super::broad_phase::PageBroadPhase;
 use super::effects::TermCensus;
 use super::error::BookError;
 use super::interaction::{Ray, Tent};
@@ -172,6 +173,8 @@ pub struct Book<T: Real> {
     pub(crate) flips: Vec<Flip<T>>,
     /// Nodes a collision pushed in the current step (pinned by the projection).
     pub(crate) pushed: Vec<bool>,
+    /// The broad phase of the active page's collisions.
+    pub(crate) broad: PageBroadPhase<T>,
     /// The terms of the rest view and of the active view.
     pub(crate) census: [TermCensus; 2],
 }
@@ -238,6 +241,7 @@ impl<T: Real> Book<T> {
             ),
             flips: Vec::with_capacity(settings.max_flips),
             pushed,
+            broad: PageBroadPhase::new(n),
             census: [TermCensus::default(); 2],
         };
         book.place_page(BlockSide::Right, 1);

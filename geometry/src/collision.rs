@@ -12,6 +12,9 @@
 use folio_kernels::contact::ContactPlane;
 use folio_kernels::{Real, Vec3Ops, math};
 
+mod bounds;
+pub use bounds::Bounds;
+
 /// A segment in the XY plane with the unit normal of its allowed side and a clearance.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Wall<T: Real> {
@@ -67,13 +70,34 @@ impl<T: Real> Wall<T> {
     #[inline]
     #[must_use]
     pub fn penetration(&self, p: T::Vec3) -> Option<T> {
-        let rel = T::Vec3::new(p.x() - self.a.x(), p.y() - self.a.y(), T::ZERO);
-        let s = rel.dot(self.along) * self.inverse_length_sq;
+        let s = self.span(p);
         if !(s >= T::ZERO && (s <= T::ONE || self.open_end)) {
             return None;
         }
-        let depth = self.clearance - rel.dot(self.normal);
+        let depth = self.depth(p);
         (depth > T::ZERO).then_some(depth)
+    }
+
+    /// $p - a$ in the XY plane.
+    #[inline]
+    #[must_use]
+    fn relative(&self, p: T::Vec3) -> T::Vec3 {
+        T::Vec3::new(p.x() - self.a.x(), p.y() - self.a.y(), T::ZERO)
+    }
+
+    /// The span parameter of `p`, $s = (p-a)\cdot(b-a) / \lVert b-a\rVert^2$ (0 at `a`,
+    /// 1 at `b`).
+    #[inline]
+    #[must_use]
+    fn span(&self, p: T::Vec3) -> T {
+        self.relative(p).dot(self.along) * self.inverse_length_sq
+    }
+
+    /// The depth of `p` in the clearance band, $c - (p-a)\cdot n$ (negative when clear).
+    #[inline]
+    #[must_use]
+    fn depth(&self, p: T::Vec3) -> T {
+        self.clearance - self.relative(p).dot(self.normal)
     }
 }
 
@@ -137,6 +161,9 @@ impl<T: Real> Obstacle<T> for Floor<T> {
 pub struct Contacts<T> {
     /// Point-obstacle tests made (the work of collision handling).
     pub tested: usize,
+    /// Box-wall tests of the broad phase ([`Wall::misses`]), each of which may spare the
+    /// point tests of a group of points.
+    pub bounds_tested: usize,
     /// Points moved.
     pub resolved: usize,
     /// Largest depth resolved (page units).
