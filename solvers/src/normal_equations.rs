@@ -276,9 +276,9 @@ impl<T: Real> NormalEquations<T> {
         let outcome = self.factor.factor_paired(
             &self.symbolic,
             &self.values,
+            None,
             &self.pivot_scale,
-            epsilon,
-            delta,
+            (epsilon, delta),
         );
         self.held = matches!(outcome, FactorOutcome::Factored { .. });
         outcome
