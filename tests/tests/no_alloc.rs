@@ -1,5 +1,7 @@
 //! A step on an analysed topology allocates nothing (DESIGN.md: "setup allocates; stepping
-//! does not"), held by a counting global allocator.
+//! does not"), held by a counting global allocator: the solver on its test models, and the
+//! book over the recorded page turn (collisions with their broad phase, and the constraint
+//! projection with its normal equations, included).
 // A global allocator is an `unsafe impl`; this test binary is the only place that needs one.
 #![allow(unsafe_code)]
 
@@ -7,6 +9,7 @@ use core::alloc::{GlobalAlloc, Layout};
 use core::sync::atomic::{AtomicUsize, Ordering};
 use std::alloc::System;
 
+use folio_book::{Book, BookSettings, Script};
 use folio_kernels::Real;
 use folio_solvers::{Model, Settings, Solver, State};
 use folio_tests::models::{Chain, DogSheet};
@@ -86,4 +89,27 @@ fn steps_after_setup_do_not_allocate() {
     };
     let n = allocations_after_setup(&chain, &mut state, settings, 10);
     assert_eq!(n, 0, "chain with line search");
+
+    for (n, contact_tests) in [book_page_turn::<f64>(), book_page_turn::<f32>()] {
+        assert!(contact_tests > 0, "the page met the blocks");
+        assert_eq!(n, 0, "the book's page turn");
+    }
+}
+
+/// Allocations inside the book's steps over the recorded page turn, and the point-wall
+/// tests they made.
+fn book_page_turn<T: Real>() -> (usize, usize) {
+    let script = Script::parse(include_str!("../fixtures/page_turn.input")).unwrap();
+    let mut book = Book::<T>::new(BookSettings::default()).unwrap();
+    let (mut allocations, mut contact_tests) = (0, 0);
+    for frame in 0..script.frames {
+        for e in script.events_at(frame) {
+            book.apply(script.camera, script.forward, e.action).unwrap();
+        }
+        let before = ALLOCATIONS.load(Ordering::SeqCst);
+        let report = book.step().unwrap();
+        allocations += ALLOCATIONS.load(Ordering::SeqCst) - before;
+        contact_tests += report.contacts.tested;
+    }
+    (allocations, contact_tests)
 }
