@@ -69,13 +69,10 @@ pub struct Settings<T: Real> {
     /// earlier at `refinement_tolerance` or when the residual stops falling).
     pub refinement_steps: u32,
     /// Refinement stops at this relative residual $\lVert Kz - b\rVert_\infty/\lVert b\rVert_\infty$.
-    /// Finite, $\ge 0$. Default $\sqrt{\varepsilon}$ ($1.5 \cdot 10^{-8}$ in `f64`,
-    /// $3.5 \cdot 10^{-4}$ in `f32`), the step's own tolerance: a Newton step of one
-    /// iteration leaves a nonlinear residual far above it, so a tighter linear solve buys
-    /// nothing. Measured on the book's page turn (`cargo run --release -p folio-bench
-    /// --example frame_work`), against the former $\varepsilon^{3/4}$: refinement steps
-    /// over the turn 837 → 279 in `f64` and 270 → 0 in `f32`, with the DOG residual, the
-    /// stretch and the merge unchanged within the run-to-run spread of the turn.
+    /// Finite, $\ge 0$. Default $\varepsilon^{3/4}$ ($1.8 \cdot 10^{-12}$ in `f64`,
+    /// $6.4 \cdot 10^{-6}$ in `f32`), which keeps Newton's quadratic convergence over several
+    /// iterations. A caller that takes a single Newton iteration per step needs far less:
+    /// the book sets $\sqrt{\varepsilon}$ (`folio_book::BookSettings`).
     pub refinement_tolerance: T,
     /// Damping $\rho$ of the constraint projection's normal equations,
     /// $J W^{-1} J^\top + \rho\thinspace\mathrm{diag}(J W^{-1} J^\top)$
@@ -116,7 +113,7 @@ impl<T: Real> Default for Settings<T> {
             pivot_epsilon: T::from_f64(1000.0) * T::EPSILON,
             regularization: sqrt_eps,
             refinement_steps: 10,
-            refinement_tolerance: sqrt_eps,
+            refinement_tolerance: sqrt_eps * folio_kernels::math::sqrt(sqrt_eps),
             projection_damping: if T::EPSILON.to_f64() < 1e-10 {
                 T::ZERO
             } else {
