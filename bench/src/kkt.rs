@@ -5,15 +5,59 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::linalg::cholesky::{
-    CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering, factorize_symbolic_cholesky,
+    CholeskySymbolicParams, LdltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky,
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, Mat, MatMut, Par, Side};
 use folio_solvers::{Kkt, Ordering, Settings, Solver, State};
 use folio_tests::models::DogSheet;
+use std::process::ExitCode;
 
 /// The DOG sheet sizes the issue asks for (quads across, quads along the binding).
 pub const SIZES: [(usize, usize); 4] = [(11, 8), (16, 12), (22, 16), (32, 24)];
+
+/// Parses a grid `WxH` (quads across, quads along the binding; both at least 1), as in
+/// `--grid 22x16`.
+///
+/// # Errors
+/// A message naming the bad text when it is not two positive integers joined by `x`.
+pub fn parse_grid(text: &str) -> Result<(usize, usize), String> {
+    let bad = || format!("--grid expects WxH with W, H >= 1 quads (e.g. 22x16), not {text:?}");
+    let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
+    let w: usize = w.trim().parse().map_err(|_| bad())?;
+    let h: usize = h.trim().parse().map_err(|_| bad())?;
+    if w == 0 || h == 0 {
+        return Err(bad());
+    }
+    Ok((w, h))
+}
+
+/// An example's exit: success, or `program: error` on stderr and a failure code.
+#[must_use]
+pub fn exit_code(program: &str, result: Result<(), Box<dyn core::error::Error>>) -> ExitCode {
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("{program}: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// The value after `flag` in `args`, if the flag is there.
+///
+/// # Errors
+/// When the flag is the last argument.
+pub fn flag_value<'a>(args: &'a [String], flag: &str) -> Result<Option<&'a str>, String> {
+    match args.iter().position(|a| a == flag) {
+        None => Ok(None),
+        Some(i) => args
+            .get(i + 1)
+            .map(|v| Some(v.as_str()))
+            .ok_or_else(|| format!("{flag} needs a value")),
+    }
+}
 
 /// A DOG sheet of `quads` (page width 12, rolled on a radius-6 cylinder, the pull at the
 /// grabbed node's position), its state, and the first KKT system of a step with its RHS.
@@ -34,9 +78,23 @@ impl DogKkt {
     /// Builds and analyses the system with `ordering`.
     ///
     /// # Panics
-    /// If the model cannot be linearized (a bench fixture).
+    /// If [`DogKkt::try_new`] fails (a bench fixture of a valid size).
     #[must_use]
     pub fn new(quads: (usize, usize), ordering: Ordering) -> Self {
+        Self::try_new(quads, ordering).expect("a valid DOG sheet")
+    }
+
+    /// Builds and analyses the system of `quads` (at least 1x1) with `ordering`.
+    ///
+    /// # Errors
+    /// A zero size, or a model the solver cannot linearize, as a message.
+    pub fn try_new(quads: (usize, usize), ordering: Ordering) -> Result<Self, String> {
+        if quads.0 == 0 || quads.1 == 0 {
+            return Err(format!(
+                "a DOG sheet needs at least 1x1 quads, not {}x{}",
+                quads.0, quads.1
+            ));
+        }
         let mut sheet = DogSheet::<f64>::new(quads.0, quads.1, 12.0 / quads.0 as f64);
         let state = sheet.rolled(6.0);
         sheet.set_target(state.x[sheet.grabbed_node()]);
@@ -44,17 +102,26 @@ impl DogKkt {
             ordering,
             ..Settings::default()
         };
-        let mut solver = Solver::new(settings).expect("valid settings");
-        assert!(solver.linearize(&sheet, &state).expect("valid model"));
-        let kkt = solver.kkt().expect("analysed").clone();
-        let rhs = solver.rhs().expect("analysed").to_vec();
-        Self {
+        let mut solver = Solver::new(settings).map_err(|e| format!("settings: {e}"))?;
+        let grid = format!("{}x{}", quads.0, quads.1);
+        match solver.linearize(&sheet, &state) {
+            Ok(true) => {}
+            Ok(false) => {
+                return Err(format!(
+                    "the {grid} sheet: no KKT system, or non-finite terms"
+                ));
+            }
+            Err(e) => return Err(format!("the {grid} sheet: {e}")),
+        }
+        let kkt = solver.kkt().ok_or("no KKT after linearize")?.clone();
+        let rhs = solver.rhs().ok_or("no RHS after linearize")?.to_vec();
+        Ok(Self {
             sheet,
             state,
             kkt,
             rhs,
             settings,
-        }
+        })
     }
 
     /// Refactorizes on the reused symbolic analysis and solves with refinement.
@@ -122,29 +189,33 @@ pub fn faer_symbolic(system: &DogKkt, supernodal: Option<bool>) -> SymbolicChole
     .expect("symbolic analysis")
 }
 
-/// faer's numeric $LDL^\top$ on `symbolic` with the same sign-aware regularization as Folio,
-/// then a solve of the system's right-hand side into `z` (no refinement).
-pub fn faer_factor_and_solve(
+/// Scratch memory for [`faer_factor`] and [`faer_solve`] on `symbolic`.
+#[must_use]
+pub fn faer_scratch(symbolic: &SymbolicCholesky<u32>, par: Par) -> MemBuffer {
+    MemBuffer::new(
+        symbolic
+            .factorize_numeric_ldlt_scratch::<f64>(par, Default::default())
+            .or(symbolic.solve_in_place_scratch::<f64>(1, par)),
+    )
+}
+
+/// faer's numeric $LDL^\top$ of `system` into `l_values` on `symbolic`, with the same
+/// sign-aware regularization as Folio.
+pub fn faer_factor(
     system: &DogKkt,
     symbolic: &SymbolicCholesky<u32>,
     l_values: &mut [f64],
     signs: &[i8],
-    z: &mut [f64],
     par: Par,
+    stack: &mut MemStack,
 ) {
-    let n = system.kkt.pattern().order();
     let scale = system.kkt.primal_scale();
     let regularization = LdltRegularization {
         dynamic_regularization_signs: Some(signs),
         dynamic_regularization_delta: system.settings.regularization * scale,
         dynamic_regularization_epsilon: system.settings.pivot_epsilon * scale,
     };
-    let req = symbolic
-        .factorize_numeric_ldlt_scratch::<f64>(par, Default::default())
-        .or(symbolic.solve_in_place_scratch::<f64>(1, par));
-    let mut buffer = MemBuffer::new(req);
-    let stack = MemStack::new(&mut buffer);
-    let ldlt = symbolic
+    symbolic
         .factorize_numeric_ldlt(
             l_values,
             system.faer_matrix(),
@@ -155,9 +226,37 @@ pub fn faer_factor_and_solve(
             Default::default(),
         )
         .expect("numeric factorization");
+}
+
+/// Solves the system's right-hand side into `z` with faer's factor `l_values` (no
+/// refinement).
+pub fn faer_solve(
+    system: &DogKkt,
+    symbolic: &SymbolicCholesky<u32>,
+    l_values: &[f64],
+    z: &mut [f64],
+    par: Par,
+    stack: &mut MemStack,
+) {
+    let n = system.kkt.pattern().order();
     z.copy_from_slice(&system.rhs);
     let rhs = MatMut::from_column_major_slice_mut(z, n, 1);
-    ldlt.solve_in_place_with_conj(Conj::No, rhs, par, stack);
+    LdltRef::new(symbolic, l_values).solve_in_place_with_conj(Conj::No, rhs, par, stack);
+}
+
+/// [`faer_factor`], then [`faer_solve`].
+pub fn faer_factor_and_solve(
+    system: &DogKkt,
+    symbolic: &SymbolicCholesky<u32>,
+    l_values: &mut [f64],
+    signs: &[i8],
+    z: &mut [f64],
+    par: Par,
+) {
+    let mut buffer = faer_scratch(symbolic, par);
+    let stack = MemStack::new(&mut buffer);
+    faer_factor(system, symbolic, l_values, signs, par, stack);
+    faer_solve(system, symbolic, l_values, z, par, stack);
 }
 
 /// faer from scratch: AMD analysis, numeric factorization and solve.
