@@ -5,7 +5,7 @@
 //! exceeds 2e-4, in one run:
 //! `cargo run --release -p folio-bench --example frame_work`.
 
-use folio_bench::book::{PAGE_TURN, Play, play_in, quantile};
+use folio_bench::book::{PAGE_TURN, Play, play_in, quantile, worst};
 use folio_book::{BookSettings, Phase, Script};
 use folio_kernels::Real;
 
@@ -14,7 +14,7 @@ fn row(name: &str, values: &[f64]) {
         "| {name} | {:.1} | {:.1} | {:.1} | {:.0} |",
         quantile(values, 0.5),
         quantile(values, 0.99),
-        values.iter().copied().fold(0.0, f64::max),
+        values.iter().copied().fold(0.0, worst),
         values.iter().sum::<f64>()
     );
 }
@@ -54,7 +54,7 @@ fn table<T: Real>(name: &str, settings: BookSettings<T>, script: &Script) {
     println!(
         "projection left max|C| above its tolerance {tolerance:.0e} in {} frames (worst {:.1e})",
         after.iter().filter(|&&c| c > tolerance).count(),
-        after.iter().copied().fold(0.0, f64::max)
+        after.iter().copied().fold(0.0, worst)
     );
     for &i in &active {
         if p.dog[i] > 2e-4 {
@@ -69,7 +69,7 @@ fn table<T: Real>(name: &str, settings: BookSettings<T>, script: &Script) {
         "KKT relative residual after refinement: median {:.1e}, p99 {:.1e}, max {:.1e}",
         quantile(&linear, 0.5),
         quantile(&linear, 0.99),
-        linear.iter().copied().fold(0.0, f64::max)
+        linear.iter().copied().fold(0.0, worst)
     );
 }
 

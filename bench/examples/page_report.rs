@@ -7,7 +7,7 @@
 
 use std::time::Instant;
 
-use folio_bench::book::quantile;
+use folio_bench::book::{quantile, worst};
 use folio_bench::pages::{PAGE_TURN, mean, models, play, render_grid};
 use folio_kernels::Real;
 use folio_pages::spring::{SpringPage, SpringSettings};
@@ -40,7 +40,7 @@ fn main() {
             mean(&p.max_stretch),
             mean(&p.rmse_stretch),
             mean(&p.angle_defect),
-            p.angle_defect.iter().copied().fold(0.0, f64::max),
+            p.angle_defect.iter().copied().fold(0.0, worst),
             p.unreachable,
             mean(&p.finger_gaps),
         );

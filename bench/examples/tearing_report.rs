@@ -24,7 +24,7 @@
 use core::hint::black_box;
 use std::time::Instant;
 
-use folio_bench::book::quantile;
+use folio_bench::book::{quantile, worst};
 use folio_bench::tearing::{ASYMMETRIC, ConeInputs, Scene, TearInputs, membrane_gradients};
 use folio_tearing::sheet::SheetEffects;
 
@@ -167,7 +167,7 @@ fn mean_ms(samples: &[f64]) -> f64 {
 }
 
 fn max_ms(samples: &[f64]) -> f64 {
-    samples.iter().copied().fold(0.0, f64::max) * 1e3
+    samples.iter().copied().fold(0.0, worst) * 1e3
 }
 
 /// The CPU model, the cores and the process's thread count, where Linux tells them.

@@ -17,7 +17,7 @@ pub struct Play<T = f64> {
     pub max_stretch_mean: f64,
     /// Mean over frames with an active page of the RMS edge stretch.
     pub rms_stretch_mean: f64,
-    /// Largest DOG residual after any step.
+    /// Largest DOG residual after any step (NaN if any was).
     pub dog_max: f64,
     /// DOG residual after every step (0 without an active page).
     pub dog: Vec<f64>,
@@ -70,7 +70,7 @@ pub fn play_in<T: Real>(settings: BookSettings<T>, script: &Script) -> Play<T> {
             max_sum += max.to_f64();
             rms_sum += rms.to_f64();
             let dog = book.dog_residual().map_or(0.0, Real::to_f64);
-            out.dog_max = out.dog_max.max(dog);
+            out.dog_max = worst(out.dog_max, dog);
             out.dog.push(dog);
         } else {
             out.dog.push(0.0);
@@ -82,6 +82,17 @@ pub fn play_in<T: Real>(settings: BookSettings<T>, script: &Script) -> Play<T> {
     out.max_stretch_mean = max_sum / n;
     out.rms_stretch_mean = rms_sum / n;
     out
+}
+
+/// The larger of `a` and `b`, NaN if either is: the fold for report maxima, where
+/// `f64::max` would drop a NaN and let a broken run look good.
+#[must_use]
+pub fn worst(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.max(b)
+    }
 }
 
 /// The `q`-quantile (0..=1) of `samples`.

@@ -118,7 +118,13 @@ pub struct BookSettings<T: Real> {
     /// most this (dimensionless for the DOG rows, page units for the others)...
     pub constraint_tolerance: T,
     /// ...or this many iterations ran (0 switches it off: the seed's plain step, which
-    /// leaves DOG residuals of a few 1e-2 while the page moves fast).
+    /// leaves DOG residuals of a few 1e-2 while the page moves fast), per projection pass.
+    /// Default 5. Where the page lands on a block, projection and collision alternate (up
+    /// to twice `collision_rounds` passes) and the step ends on a collision push; a pass
+    /// that stops short leaves more for the pushes to break. Measured with `folio run` on
+    /// the built-in scenes, the largest DOG residual with 3 → 5: page-turn 2.6e-4 → 1.2e-4,
+    /// stack 7.3e-4 → 2.8e-4, bookmark-flip 1.4e-4 → 1.0e-4; peek and paperback stay
+    /// below 1e-4, and every penetration stays at rounding level.
     pub max_corrections: u32,
     /// Contact spring stiffness per unit of node mass ($s^{-2}$): a node pushed out of a
     /// block, the cover or the table in one step is held on that surface by a
@@ -181,7 +187,7 @@ impl<T: Real> Default for BookSettings<T> {
             merge_speed: T::from_f64(0.5),
             merge_frames: 10,
             constraint_tolerance: T::from_f64(1e-4),
-            max_corrections: 3,
+            max_corrections: 5,
             contact_pin_weight: T::from_f64(1e3),
             contact_stiffness: T::from_f64(if T::EPSILON.to_f64() < 1e-10 {
                 1e6

@@ -474,9 +474,20 @@ impl<T: Real> Workspace<T> {
     ) -> Result<Evaluation<T>, SolverError> {
         let pattern = &self.kkt.pattern;
         let x = if trial { &self.trial } else { &self.x };
-        if derivatives != Derivatives::None {
-            self.kkt.values.iter_mut().for_each(|v| *v = T::ZERO);
-            self.gradient.iter_mut().for_each(|v| *v = T::ZERO);
+        // The Jacobian lives in the constraint columns (rows above them are primal, and the
+        // constraint block is zero), so a Jacobian-only evaluation clears just those; the
+        // primal block and the gradient are left as they were (nothing reads them until
+        // the next full evaluation).
+        let jacobian_start = pattern.col_ptr[pattern.dofs] as usize;
+        match derivatives {
+            Derivatives::None => {}
+            Derivatives::Jacobian => self.kkt.values[jacobian_start..]
+                .iter_mut()
+                .for_each(|v| *v = T::ZERO),
+            Derivatives::First | Derivatives::Second => {
+                self.kkt.values.iter_mut().for_each(|v| *v = T::ZERO);
+                self.gradient.iter_mut().for_each(|v| *v = T::ZERO);
+            }
         }
         let mut visitor = Assemble {
             pattern,
@@ -500,15 +511,21 @@ impl<T: Real> Workspace<T> {
         for (d, &c) in pattern.coordinate_of.iter().enumerate() {
             let dx = x[c as usize / 3].get(c as usize % 3) - self.x_bar[d];
             inertia += self.mass[d] * dx * dx;
-            if derivatives != Derivatives::None {
+            if matches!(derivatives, Derivatives::First | Derivatives::Second) {
                 self.kkt.values[pattern.diagonal_slot(d)] += self.mass[d] * inv_h2;
             }
         }
         let energy = T::HALF * inv_h2 * inertia + potential;
         let mut finite = energy.is_finite() && max_abs(&self.constraint).is_finite();
-        if derivatives != Derivatives::None {
-            finite = finite && max_abs(&self.gradient).is_finite();
-            finite = finite && max_abs(&self.kkt.values).is_finite();
+        match derivatives {
+            Derivatives::None => {}
+            Derivatives::Jacobian => {
+                finite = finite && max_abs(&self.kkt.values[jacobian_start..]).is_finite();
+            }
+            Derivatives::First | Derivatives::Second => {
+                finite = finite && max_abs(&self.gradient).is_finite();
+                finite = finite && max_abs(&self.kkt.values).is_finite();
+            }
         }
         Ok(Evaluation { energy, finite })
     }
