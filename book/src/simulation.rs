@@ -252,13 +252,16 @@ impl<T: Real> Book<T> {
     }
 
     /// Analyses the views the book steps (the rest view only when the blocks are simulated)
-    /// and counts their terms.
+    /// and counts their terms. Both solvers project after their steps (`collide.rs`), so
+    /// both analyse the projection's normal equations too.
     fn analyse(&mut self) -> Result<(), BookError> {
         if self.settings.effects.blocks {
-            self.rest_solver.analyse(&RestView(&self.terms))?;
+            self.rest_solver
+                .analyse_projection(&RestView(&self.terms))?;
             RestView(&self.terms).visit_terms(&mut self.census[0]);
         }
-        self.active_solver.analyse(&ActiveView(&self.terms))?;
+        self.active_solver
+            .analyse_projection(&ActiveView(&self.terms))?;
         ActiveView(&self.terms).visit_terms(&mut self.census[1]);
         Ok(())
     }

@@ -40,6 +40,10 @@ use crate::ordering::Ordering;
 use crate::pattern::KktPattern;
 use crate::symbolic::Symbolic;
 
+mod transpose;
+
+use transpose::Transpose;
+
 /// How one [`NormalEquations::solve`] went.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NormalSolve<T> {
@@ -57,18 +61,16 @@ pub struct NormalSolve<T> {
 /// factor (module docs).
 ///
 /// Owns the transpose of $J$'s structure (one entry per Jacobian slot of the KKT pattern,
-/// two `u32` each, plus `dofs + 1` pointers), the upper pattern of $S$ and its symbolic
+/// two indices each, plus `dofs + 1` pointers; `u16` when the KKT has at most 65,535
+/// slots, `u32` otherwise), the upper pattern of $S$ and its symbolic
 /// analysis, the factor, the values, $W^{-1}$ (one per dof) and seven work vectors of the
 /// row count, all allocated by [`NormalEquations::new`]; nothing else allocates.
 #[derive(Clone, Debug)]
 pub struct NormalEquations<T> {
     /// Free coordinates of the KKT pattern.
     dofs: usize,
-    /// Per dof, its Jacobian entries: `dof_ptr[d]..dof_ptr[d + 1]` into `dof_row` (the
-    /// constraint row) and `dof_slot` (the KKT value slot of $J_{row,d}$), rows ascending.
-    dof_ptr: Vec<u32>,
-    dof_row: Vec<u32>,
-    dof_slot: Vec<u32>,
+    /// Per dof, its Jacobian entries (constraint row and KKT value slot), rows ascending.
+    transpose: Transpose,
     /// Upper pattern of $S$ (`rows` unknowns, all with positive pivots).
     pattern: KktPattern,
     symbolic: Symbolic,
@@ -94,65 +96,10 @@ impl<T: Real> NormalEquations<T> {
     #[must_use]
     pub fn new(kkt: &KktPattern) -> Self {
         let (dofs, rows) = (kkt.dofs, kkt.rows);
-        // J transposed: count per dof, then fill column by column (rows come out ascending).
-        let mut dof_ptr = vec![0u32; dofs + 1];
-        for c in 0..rows {
-            for &d in jacobian_rows(kkt, c) {
-                dof_ptr[d as usize + 1] += 1;
-            }
-        }
-        for d in 0..dofs {
-            dof_ptr[d + 1] += dof_ptr[d];
-        }
-        let entries = dof_ptr[dofs] as usize;
-        let (mut dof_row, mut dof_slot) = (vec![0u32; entries], vec![0u32; entries]);
-        let mut fill = dof_ptr.clone();
-        for c in 0..rows {
-            let start = kkt.col_ptr[dofs + c] as usize;
-            for (k, &d) in jacobian_rows(kkt, c).iter().enumerate() {
-                let at = fill[d as usize] as usize;
-                dof_row[at] = c as u32;
-                dof_slot[at] = (start + k) as u32;
-                fill[d as usize] += 1;
-            }
-        }
-        drop(fill);
-        // S's upper column b: rows a <= b sharing a dof with b, ascending, diagonal last.
-        let mut mark = vec![u32::MAX; rows];
-        let mut col_ptr = Vec::with_capacity(rows + 1);
-        col_ptr.push(0u32);
-        let mut row_idx = Vec::new();
-        for b in 0..rows {
-            let start = row_idx.len();
-            mark[b] = b as u32;
-            for &d in jacobian_rows(kkt, b) {
-                let range = dof_ptr[d as usize] as usize..dof_ptr[d as usize + 1] as usize;
-                for &a in &dof_row[range] {
-                    if (a as usize) < b && mark[a as usize] != b as u32 {
-                        mark[a as usize] = b as u32;
-                        row_idx.push(a);
-                    }
-                }
-            }
-            row_idx[start..].sort_unstable();
-            row_idx.push(b as u32);
-            col_ptr.push(row_idx.len() as u32);
-        }
-        drop(mark);
-        row_idx.shrink_to_fit();
-        let pattern = KktPattern {
-            dofs: rows,
-            rows: 0,
-            col_ptr,
-            row_idx,
-            ..KktPattern::default()
-        };
-        let symbolic = Symbolic::analyse(&pattern, Ordering::Amd);
+        let (transpose, pattern, symbolic) = structure(kkt);
         Self {
             dofs,
-            dof_ptr,
-            dof_row,
-            dof_slot,
+            transpose,
             factor: Ldlt::new(&symbolic),
             values: vec![T::ZERO; pattern.nnz()],
             symbolic,
@@ -206,16 +153,14 @@ impl<T: Real> NormalEquations<T> {
             for (&d, &j_bd) in kkt.row_idx[j_row.clone()].iter().zip(&kkt_values[j_row]) {
                 let d = d as usize;
                 let w = j_bd * self.inverse_w[d];
-                let range = self.dof_ptr[d] as usize..self.dof_ptr[d + 1] as usize;
-                for (&a, &slot) in self.dof_row[range.clone()]
-                    .iter()
-                    .zip(&self.dof_slot[range])
-                {
-                    if a as usize > b {
-                        break;
+                let column = &mut self.column;
+                self.transpose.for_each(d, kkt_values, |a, j_ad| {
+                    if a > b {
+                        return false;
                     }
-                    self.column[a as usize] += kkt_values[slot as usize] * w;
-                }
+                    column[a] += j_ad * w;
+                    true
+                });
             }
             let range = self.pattern.col_ptr[b] as usize..self.pattern.col_ptr[b + 1] as usize;
             for (&a, v) in self.pattern.row_idx[range.clone()]
@@ -234,14 +179,11 @@ impl<T: Real> NormalEquations<T> {
     /// $\delta = -W^{-1} J^\top \mu$ into the first `dofs` entries of `delta`.
     pub fn back_substitute(&self, delta: &mut [T], mu: &[T], kkt_values: &[T]) {
         for (d, out) in delta[..self.dofs].iter_mut().enumerate() {
-            let range = self.dof_ptr[d] as usize..self.dof_ptr[d + 1] as usize;
             let mut sum = T::ZERO;
-            for (&a, &slot) in self.dof_row[range.clone()]
-                .iter()
-                .zip(&self.dof_slot[range])
-            {
-                sum += kkt_values[slot as usize] * mu[a as usize];
-            }
+            self.transpose.for_each(d, kkt_values, |a, j_ad| {
+                sum += j_ad * mu[a];
+                true
+            });
             *out = -self.inverse_w[d] * sum;
         }
     }
@@ -371,6 +313,47 @@ impl<T: Real> NormalEquations<T> {
         }
         max_abs(&self.residual)
     }
+}
+
+/// $J^\top$'s structure, $S$'s upper pattern and its AMD analysis for the Jacobian block of
+/// `kkt` ([`NormalEquations::new`]). Not generic, and never inlined into the generic caller:
+/// setup code, compiled once for every value type and with this crate's optimization
+/// settings (the firmware optimizes this crate for size).
+#[inline(never)]
+fn structure(kkt: &KktPattern) -> (Transpose, KktPattern, Symbolic) {
+    let rows = kkt.rows;
+    let transpose = Transpose::new(kkt);
+    // S's upper column b: rows a <= b sharing a dof with b, ascending, diagonal last.
+    let mut mark = vec![u32::MAX; rows];
+    let mut col_ptr = Vec::with_capacity(rows + 1);
+    col_ptr.push(0u32);
+    let mut row_idx = Vec::new();
+    for b in 0..rows {
+        let start = row_idx.len();
+        mark[b] = b as u32;
+        for &d in jacobian_rows(kkt, b) {
+            transpose.for_each_row(d as usize, |a| {
+                if a < b && mark[a] != b as u32 {
+                    mark[a] = b as u32;
+                    row_idx.push(a as u32);
+                }
+            });
+        }
+        row_idx[start..].sort_unstable();
+        row_idx.push(b as u32);
+        col_ptr.push(row_idx.len() as u32);
+    }
+    drop(mark);
+    row_idx.shrink_to_fit();
+    let pattern = KktPattern {
+        dofs: rows,
+        rows: 0,
+        col_ptr,
+        row_idx,
+        ..KktPattern::default()
+    };
+    let symbolic = Symbolic::analyse(&pattern, Ordering::Amd);
+    (transpose, pattern, symbolic)
 }
 
 /// $u^\top v$.

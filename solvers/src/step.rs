@@ -84,8 +84,47 @@ struct Workspace<T: Real> {
     trial: Vec<T::Vec3>,
     /// The numeric factor holds a successful factorization of this topology.
     factored: bool,
-    /// The projection's normal equations $J W^{-1} J^\top$ (analysed with the KKT).
-    normal: NormalEquations<T>,
+    /// The projection's normal equations $J W^{-1} J^\top$, analysed with the KKT for a
+    /// solver that projects ([`Solver::analyse_projection`]), absent otherwise.
+    normal: Option<NormalEquations<T>>,
+}
+
+impl<T: Real> Workspace<T> {
+    /// The workspace of one topology (`version`, `nodes` nodes) with KKT pattern `pattern`,
+    /// analysed with `s`'s ordering and equilibration, with the normal equations when the
+    /// solver `projects`. Generic in the value type only: one copy serves every model.
+    fn new(
+        pattern: KktPattern,
+        s: &Settings<T>,
+        version: u64,
+        nodes: usize,
+        projects: bool,
+    ) -> Self {
+        let (dofs, rows) = (pattern.dofs, pattern.rows);
+        let normal = projects.then(|| NormalEquations::new(&pattern));
+        let mut kkt = Kkt::new(pattern, s.ordering);
+        kkt.set_equilibration(s.equilibrate);
+        let n = dofs + rows;
+        Self {
+            version,
+            ordering: s.ordering,
+            equilibrate: s.equilibrate,
+            kkt,
+            rhs: vec![T::ZERO; n],
+            product: vec![T::ZERO; n],
+            solution: vec![T::ZERO; n],
+            gradient: vec![T::ZERO; dofs],
+            constraint: vec![T::ZERO; rows],
+            lambda: vec![T::ZERO; rows],
+            mass: vec![T::ZERO; dofs],
+            x_prev: vec![T::ZERO; dofs],
+            x_bar: vec![T::ZERO; dofs],
+            x: vec![T::Vec3::ZERO; nodes],
+            trial: vec![T::Vec3::ZERO; nodes],
+            factored: false,
+            normal,
+        }
+    }
 }
 
 /// The time stepper: settings, and the symbolic analysis and buffers of the last topology it
@@ -97,7 +136,10 @@ struct Workspace<T: Real> {
 /// row or node for the rest). The workspace is allocated at setup: the first step,
 /// [`Solver::analyse`] or [`Solver::linearize`], or a step after a change of topology
 /// version, ordering, constraint-Hessian switch or equilibration. Every other step
-/// allocates nothing.
+/// allocates nothing. A solver whose caller projects ([`Solver::project_constraints`])
+/// also holds the projection's normal equations, from [`Solver::analyse_projection`] on;
+/// one that never projects does not build them. Once built, every later analysis builds
+/// them too.
 #[derive(Clone, Debug)]
 pub struct Solver<T: Real> {
     settings: Settings<T>,
@@ -170,33 +212,38 @@ impl<T: Real> Solver<T> {
                 return Ok(false);
             }
         }
-        self.work = None;
+        // A solver that projected keeps projecting: its new workspace gets normal equations.
+        let projects = self.work.take().is_some_and(|w| w.normal.is_some());
         let pattern = KktPattern::build(model, s.constraint_hessian)?;
-        let (dofs, rows, nodes) = (pattern.dofs, pattern.rows, model.node_count());
-        let normal = NormalEquations::new(&pattern);
-        let mut kkt = Kkt::new(pattern, s.ordering);
-        kkt.set_equilibration(s.equilibrate);
-        let n = dofs + rows;
-        self.work = Some(Workspace {
-            version: model.topology_version(),
-            ordering: s.ordering,
-            equilibrate: s.equilibrate,
-            kkt,
-            rhs: vec![T::ZERO; n],
-            product: vec![T::ZERO; n],
-            solution: vec![T::ZERO; n],
-            gradient: vec![T::ZERO; dofs],
-            constraint: vec![T::ZERO; rows],
-            lambda: vec![T::ZERO; rows],
-            mass: vec![T::ZERO; dofs],
-            x_prev: vec![T::ZERO; dofs],
-            x_bar: vec![T::ZERO; dofs],
-            x: vec![T::Vec3::ZERO; nodes],
-            trial: vec![T::Vec3::ZERO; nodes],
-            factored: false,
-            normal,
-        });
+        let (version, nodes) = (model.topology_version(), model.node_count());
+        self.work = Some(Workspace::new(pattern, s, version, nodes, projects));
         Ok(true)
+    }
+
+    /// Setup for a solver that projects: runs [`Solver::analyse`] for `model` and builds the
+    /// normal equations of [`Solver::project_constraints`]
+    /// ([`crate::normal_equations::NormalEquations`]) with it, now and at every later
+    /// analysis; returns whether anything was built. Without this call, the first
+    /// projection of each topology builds them (and allocates); a solver that never
+    /// projects never does.
+    ///
+    /// # Errors
+    /// As [`Solver::analyse`].
+    pub fn analyse_projection<M: Model<T>>(&mut self, model: &M) -> Result<bool, SolverError> {
+        let analysed = self.analyse(model)?;
+        Ok(self.prepare_projection() || analysed)
+    }
+
+    /// Builds the normal equations for the current workspace if it lacks them (from now on
+    /// every analysis builds them); returns whether it did.
+    fn prepare_projection(&mut self) -> bool {
+        match &mut self.work {
+            Some(w) if w.normal.is_none() => {
+                w.normal = Some(NormalEquations::new(&w.kkt.pattern));
+                true
+            }
+            _ => false,
+        }
     }
 
     /// Assembles the first Newton system of a step from `state` (as [`Solver::step`] would)

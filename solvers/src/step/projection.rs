@@ -53,7 +53,9 @@ impl<T: Real> Solver<T> {
     /// $\lVert C\rVert_\infty \le$ `tolerance` or `max_steps` iterations; each iteration
     /// halves its step (up to 6 times) until $\lVert C\rVert_\infty$ falls, and one that
     /// cannot lower it ends the projection. Does
-    /// nothing (zero steps) before the first successful step of the topology.
+    /// nothing (zero steps) before the first successful step of the topology. The normal
+    /// equations come from [`Solver::analyse_projection`] at setup; a solver set up without
+    /// it builds them (and allocates) at its first call of each topology.
     ///
     /// # Errors
     /// As [`Solver::step`] for a model that changed or a state of the wrong length;
@@ -76,6 +78,13 @@ impl<T: Real> Solver<T> {
         };
         let s = self.settings;
         let h = s.time_step;
+        if self
+            .work
+            .as_ref()
+            .is_some_and(|w| w.version == model.topology_version())
+        {
+            self.prepare_projection();
+        }
         let Some(w) = self.work.as_mut() else {
             return Ok(out);
         };
@@ -146,9 +155,11 @@ impl<T: Real> Workspace<T> {
         if !e.finite {
             return Ok(None);
         }
+        let Some(normal) = self.normal.as_mut() else {
+            return Ok(None);
+        };
         let h2 = h * h;
-        for ((w, &m), &c) in self
-            .normal
+        for ((w, &m), &c) in normal
             .inverse_w
             .iter_mut()
             .zip(&self.mass)
@@ -161,10 +172,9 @@ impl<T: Real> Workspace<T> {
             };
             *w = h2 / (m * weight);
         }
-        self.normal
-            .assemble(&self.kkt.pattern, &self.kkt.values, s.projection_damping);
+        normal.assemble(&self.kkt.pattern, &self.kkt.values, s.projection_damping);
         let (delta, mu) = self.solution.split_at_mut(dofs);
-        let solve = self.normal.solve(
+        let solve = normal.solve(
             mu,
             &self.constraint,
             T::from_f64(0.25) * pin.tolerance,
@@ -177,7 +187,7 @@ impl<T: Real> Workspace<T> {
         if solve.failed || !(solve.residual.is_finite() && max_abs(mu).is_finite()) {
             return Ok(None);
         }
-        self.normal.back_substitute(delta, mu, &self.kkt.values);
+        normal.back_substitute(delta, mu, &self.kkt.values);
         // Backtrack while max|C| does not fall (on nearly flat DOG stars the remedied
         // Jacobian is not the exact one, and a full step can overshoot).
         let mut alpha = T::ONE;
