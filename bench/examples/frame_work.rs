@@ -2,12 +2,14 @@
 //! factorizations and refinement steps of the Newton step, and the constraint projection's
 //! iterations, normal-equation factorizations and triangular solves (median, p99, max and
 //! total), with the merge frame, the largest DOG residual and the frames whose residual
-//! exceeds 2e-4, in one run:
+//! exceeds 2e-4, in one run; then `f32` on the delayed-duals order (the `f32` default
+//! before [`Ordering::AmdQuasiDefinite`]) for comparison:
 //! `cargo run --release -p folio-bench --example frame_work`.
 
 use folio_bench::book::{PAGE_TURN, Play, play_in, quantile, worst};
 use folio_book::{BookSettings, Phase, Script};
 use folio_kernels::Real;
+use folio_solvers::Ordering;
 
 fn row(name: &str, values: &[f64]) {
     println!(
@@ -77,4 +79,7 @@ fn main() {
     let script = Script::parse(PAGE_TURN).expect("fixture");
     table("f64, default", BookSettings::<f64>::default(), &script);
     table("f32, default", BookSettings::<f32>::default(), &script);
+    let mut delayed = BookSettings::<f32>::default();
+    delayed.solver.ordering = Ordering::AmdDelayedDuals;
+    table("f32, AmdDelayedDuals", delayed, &script);
 }

@@ -4,7 +4,7 @@
 //! `--grid WxH`; `--export PATH` writes that grid's system (11x8 without `--grid`) as a
 //! Matrix Market file, `--rhs PATH` its right-hand side as a Matrix Market array and
 //! `--perm PATH` the permutation (`perm[new] = old`, 0-based, one a line) of `--ordering
-//! NAME` (`Amd`, the default, `AmdDelayedDuals` or `Natural`).
+//! NAME` (`Amd`, the default, `AmdDelayedDuals`, `AmdQuasiDefinite` or `Natural`).
 //!
 //! `cargo run --release -p folio-bench --example kkt_report -- --grid 22x16 --export out/kkt_22x16.mtx`
 
@@ -40,11 +40,13 @@ fn run() -> Result<(), Box<dyn core::error::Error>> {
     let ordering = match flag_value(&args, "--ordering")? {
         None | Some("Amd") => Ordering::Amd,
         Some("AmdDelayedDuals") => Ordering::AmdDelayedDuals,
+        Some("AmdQuasiDefinite") => Ordering::AmdQuasiDefinite,
         Some("Natural") => Ordering::Natural,
         Some(other) => {
-            return Err(
-                format!("--ordering: Amd, AmdDelayedDuals or Natural, not {other:?}").into(),
-            );
+            return Err(format!(
+                "--ordering: Amd, AmdDelayedDuals, AmdQuasiDefinite or Natural, not {other:?}"
+            )
+            .into());
         }
     };
     let grids = grid.map_or(SIZES.to_vec(), |g| vec![g]);
@@ -54,7 +56,12 @@ fn run() -> Result<(), Box<dyn core::error::Error>> {
         "quads", "ordering", "n", "nnz(A)", "nnz(L)", "flops", "regularized", "residual"
     );
     for quads in grids {
-        for ordering in [Ordering::Natural, Ordering::Amd, Ordering::AmdDelayedDuals] {
+        for ordering in [
+            Ordering::Natural,
+            Ordering::Amd,
+            Ordering::AmdDelayedDuals,
+            Ordering::AmdQuasiDefinite,
+        ] {
             if ordering == Ordering::Natural && quads.0 * quads.1 > NATURAL_QUADS {
                 continue;
             }

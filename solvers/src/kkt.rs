@@ -5,8 +5,9 @@ use alloc::vec;
 use alloc::vec::Vec;
 use folio_kernels::Real;
 
+use crate::gmres::{Gmres, Operator};
 use crate::ldlt::{FactorOutcome, Ldlt};
-use crate::ordering::Ordering;
+use crate::ordering::{Ordering, QUASI_DEFINITE_RESTART, QUASI_DEFINITE_SHIFT};
 use crate::pattern::KktPattern;
 use crate::symbolic::Symbolic;
 
@@ -27,7 +28,8 @@ pub struct Refinement<T> {
 ///
 /// Owns the pattern, the symbolic analysis, the factor (sizes in their docs), the
 /// upper-triangle values (`nnz` of the pattern) and five work vectors of the matrix order
-/// $n$; [`Kkt::set_equilibration`] adds the scaling's three buffers of order $n$ (the
+/// $n$; [`Ordering::AmdQuasiDefinite`] adds its GMRES workspace ([`Gmres`], 12 vectors of
+/// order $n$); [`Kkt::set_equilibration`] adds the scaling's three buffers of order $n$ (the
 /// scaled values are not stored: the factorization scales each entry as it reads it). Everything is allocated at setup ([`Kkt::new`], [`Kkt::set_equilibration`]);
 /// factorizing and solving allocate nothing. The factor is made for this very analysis, so the two always pair.
 #[derive(Clone, Debug)]
@@ -51,6 +53,19 @@ pub struct Kkt<T> {
     previous: Vec<T>,
     /// Numeric factorizations since [`Kkt::new`].
     factorizations: u64,
+    /// The Krylov refinement of [`Ordering::AmdQuasiDefinite`]; plain refinement without.
+    krylov: Option<Gmres<T>>,
+}
+
+/// $K$ and its (regularized) factor as the operator and preconditioner of GMRES.
+impl<T: Real> Operator<T> for Kkt<T> {
+    fn product(&mut self, out: &mut [T], v: &[T]) {
+        self.multiply(out, v);
+    }
+
+    fn precondition(&mut self, out: &mut [T], v: &[T]) {
+        self.solve_factor(out, v);
+    }
 }
 
 impl<T: Real> Kkt<T> {
@@ -59,8 +74,13 @@ impl<T: Real> Kkt<T> {
     pub fn new(pattern: KktPattern, ordering: Ordering) -> Self {
         let symbolic = Symbolic::analyse(&pattern, ordering);
         let n = pattern.order();
+        let quasi_definite = ordering == Ordering::AmdQuasiDefinite;
+        let mut factor = Ldlt::new(&symbolic);
+        if quasi_definite {
+            factor.set_dual_shift(T::from_f64(QUASI_DEFINITE_SHIFT));
+        }
         Self {
-            factor: Ldlt::new(&symbolic),
+            factor,
             values: vec![T::ZERO; pattern.nnz()],
             symbolic,
             pattern,
@@ -71,6 +91,7 @@ impl<T: Real> Kkt<T> {
             correction: vec![T::ZERO; n],
             previous: vec![T::ZERO; n],
             factorizations: 0,
+            krylov: quasi_definite.then(|| Gmres::new(n, QUASI_DEFINITE_RESTART)),
         }
     }
 
@@ -254,7 +275,10 @@ impl<T: Real> Kkt<T> {
     /// $z \leftarrow z + \hat K^{-1}(b - K z)$ until the relative residual
     /// $\lVert b - Kz\rVert_\infty / \lVert b\rVert_\infty$ is at most `target`, a step stops
     /// lowering it (that step is undone: the better iterate is returned), or `max_steps`
-    /// steps are done.
+    /// steps are done. With [`Ordering::AmdQuasiDefinite`] a step is a GMRES cycle
+    /// ([`Gmres::cycle`], stopping at $\lVert b - Kz\rVert_2 \le$ `target`
+    /// $\lVert b\rVert_\infty$), and `steps` counts its iterations (one solve with the factor
+    /// and one product with $K$ each).
     pub fn solve_refined(
         &mut self,
         z: &mut [T],
@@ -272,18 +296,24 @@ impl<T: Real> Kkt<T> {
         }
         let mut relative = self.residual_into(z, b) / b_norm;
         let mut steps = 0;
+        let mut krylov = self.krylov.take();
         while steps < max_steps && relative > target {
             self.previous.copy_from_slice(z);
             let (mut correction, residual) = (
                 core::mem::take(&mut self.correction),
                 core::mem::take(&mut self.residual),
             );
-            self.solve_factor(&mut correction, &residual);
-            for (zi, ci) in z.iter_mut().zip(&correction) {
-                *zi += *ci;
+            if let Some(gmres) = krylov.as_mut() {
+                let cycle = gmres.cycle(z, &residual, target * b_norm, self);
+                steps += cycle.iterations.max(1);
+            } else {
+                self.solve_factor(&mut correction, &residual);
+                for (zi, ci) in z.iter_mut().zip(&correction) {
+                    *zi += *ci;
+                }
+                steps += 1;
             }
             (self.correction, self.residual) = (correction, residual);
-            steps += 1;
             let before = relative;
             relative = self.residual_into(z, b) / b_norm;
             if relative.partial_cmp(&before) != Some(core::cmp::Ordering::Less) {
@@ -293,6 +323,7 @@ impl<T: Real> Kkt<T> {
                 break;
             }
         }
+        self.krylov = krylov;
         Refinement {
             relative_residual: relative,
             steps,

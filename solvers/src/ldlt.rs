@@ -14,6 +14,12 @@
 //! structurally zero pivot; they take $-\delta$ always (static regularization, as in
 //! quasi-definite solvers) and are not counted, so the count still means a (numerically)
 //! singular system.
+//!
+//! With a dual shift $\delta_d > 0$ ([`Ldlt::set_dual_shift`]) every constraint pivot is
+//! shifted by $-\delta_d \sigma_k$ before its sign test: the factor is then that of the
+//! quasi-definite $K - \delta_d \thinspace\mathrm{diag}(0, \Sigma)$ (Vanderbei 1995; as QDLDL
+//! in OSQP), stable in any elimination order, which a Krylov refinement against $K$
+//! corrects ([`crate::gmres`]). Structurally zero pivots then take $-\delta_d \sigma_k$.
 
 use alloc::vec;
 use alloc::vec::Vec;
@@ -66,6 +72,9 @@ pub struct Ldlt<T> {
     seen: Vec<usize>,
     /// [`Symbolic::fingerprint`] of the analysis this factor belongs to.
     fingerprint: u64,
+    /// Static shift $\delta_d$ of the constraint pivots, relative to their scale (module
+    /// docs); 0 for none.
+    dual_shift: T,
 }
 
 impl<T: Real> Ldlt<T> {
@@ -81,7 +90,15 @@ impl<T: Real> Ldlt<T> {
             reach: vec![0; n],
             seen: vec![0; n.div_ceil(BITS)],
             fingerprint: symbolic.fingerprint,
+            dual_shift: T::ZERO,
         }
+    }
+
+    /// Sets the static shift $\delta_d \ge 0$ of the constraint pivots (module docs): pivot
+    /// $k$ with $s_k < 0$ becomes $d_k - \delta_d \sigma_k$, $\sigma_k$ its scale. 0 (the
+    /// default) switches it off.
+    pub fn set_dual_shift(&mut self, shift: T) {
+        self.dual_shift = shift;
     }
 
     /// Strictly lower values of $L$, [`Symbolic::nnz_l`] entries in the symbolic's layout:
@@ -220,7 +237,11 @@ impl<T: Real> Ldlt<T> {
                 return FactorOutcome::NonFinite { pivot: k };
             }
             let sign = if s.signs[k] > 0 { T::ONE } else { -T::ONE };
-            if s.structural_zero[k] {
+            let shifted = s.signs[k] < 0 && self.dual_shift > T::ZERO;
+            if shifted {
+                diagonal -= self.dual_shift * pivot_scale;
+            }
+            if s.structural_zero[k] && !shifted {
                 diagonal = sign * delta * pivot_scale;
             } else if sign * diagonal <= epsilon * pivot_scale {
                 diagonal = sign * delta * pivot_scale;
@@ -459,6 +480,31 @@ mod tests {
         assert_eq!(ldlt.l(), &[0.5]);
         assert_eq!(ldlt.d(), &[4.0, -1.0]);
         assert_eq!(solve(&symbolic, &ldlt, &[2.0, 1.0]), [0.5, 0.0]);
+    }
+
+    /// With a dual shift of 1/2 the constraint pivot of $[[4, 2], [2, 0]]$ is
+    /// $-1 - 1/2$, the factor that of $[[4, 2], [2, -1/2]]$; the zero constraint pivot of
+    /// $[[4, 0], [0, 0]]$ becomes $-1/2$, not a regularized (and counted) $-\delta$.
+    #[test]
+    fn dual_shift_makes_the_factor_quasi_definite() {
+        let pattern = upper(1, 1, &[0, 1, 3], &[0, 0, 1]);
+        let symbolic = Symbolic::analyse(&pattern, Ordering::Natural);
+        let mut ldlt = Ldlt::new(&symbolic);
+        ldlt.set_dual_shift(0.5);
+        let outcome = ldlt.factor(&symbolic, &[4.0, 2.0, 0.0], &[1.0, 1.0], 1e-12, 1e-8);
+        let clean = FactorOutcome::Factored {
+            regularized: 0,
+            regularized_primal: 0,
+        };
+        assert_eq!(outcome, Ok(clean));
+        assert_eq!(ldlt.d(), &[4.0, -1.5]);
+        let outcome = ldlt.factor(&symbolic, &[4.0, 0.0, 0.0], &[1.0, 1.0], 1e-12, 1e-8);
+        assert_eq!(outcome, Ok(clean));
+        assert_eq!(ldlt.d(), &[4.0, -0.5]);
+        ldlt.set_dual_shift(0.0);
+        ldlt.factor(&symbolic, &[4.0, 2.0, 0.0], &[1.0, 1.0], 1e-12, 1e-8)
+            .unwrap();
+        assert_eq!(ldlt.d(), &[4.0, -1.0]);
     }
 
     /// $H = \mathrm{diag}(2, 4)$, $J = (1, 1)$: $L_{20} = 1/2$, $L_{21} = 1/4$,

@@ -31,6 +31,7 @@ mod assembly;
 #[cfg(test)]
 mod chain;
 pub mod error;
+pub mod gmres;
 pub mod index;
 pub mod kkt;
 pub mod ldlt;

@@ -23,7 +23,8 @@
 //! a seventh of the flops, so AMD is the `f64` default. In `f32` the static $\delta$ must stay
 //! near $\sqrt{\varepsilon}$ (at $10^{-6}$ and below the factor overflows) and refinement
 //! then stalls (measured with $\delta = 10^{-4}$: 2.8e-6 at 11x8, 1.7e-3 at 22x16, 0.27 at
-//! 32x24), so `f32` defaults to the delayed order (3.3e-6 to 5.2e-6 at every size).
+//! 32x24), so `f32` took the delayed order (3.3e-6 to 5.2e-6 at every size) until
+//! [`Ordering::AmdQuasiDefinite`], its default now (below).
 //!
 //! On the book's f32 page turn (equilibrated, 750 frames, x86) the trade is the same:
 //! the delayed order's worst KKT relative residual is 1.2e-4 and the turn takes 1.37 s of
@@ -32,6 +33,62 @@
 //! inexact solves decide: frame 591, then 169 once refinement kept its better iterate
 //! ([`crate::Kkt::solve_refined`]); the same change moved the delayed order from 178 to 183
 //! and f64 from 231 to 229.
+//!
+//! [`Ordering::AmdQuasiDefinite`] keeps AMD's order (and its fill: the same permutation) and
+//! makes its factor trustworthy in `f32` in two parts. (1) Every constraint pivot is shifted
+//! by $-\delta_d\sigma_k$ ([`crate::ldlt::Ldlt::set_dual_shift`]), $\delta_d$ =
+//! [`QUASI_DEFINITE_SHIFT`]: the factor is that of the quasi-definite
+//! $K_\delta = K - \delta_d\thinspace\mathrm{diag}(0, \Sigma)$, stable in any order when
+//! $\delta_d$ is not too small (a structurally zero pivot with $\delta = \sqrt\varepsilon$
+//! puts $J^\top J/\delta$ into the primal block; $10^{-2}$ keeps the growth to $10^2$).
+//! (2) The solve is refined against the true $K$ by restarted GMRES(10) with that factor as
+//! the preconditioner ([`crate::gmres`]). Plain refinement converges on a constraint mode of
+//! Schur eigenvalue $s$ at the rate $\delta/(s + \delta)$ per step; the flat-star remedy
+//! (`folio_kernels::dog::FlatStarRemedy`, offset $10^{-3}$ in `f32`) leaves modes with
+//! $s \approx 10^{-6}$, where it stalls. GMRES resolves the spread of small eigenvalues.
+//!
+//! The book's `f32` page turn (fixture `page_turn.input`, 750 frames, equilibrated, one
+//! Newton iteration, refinement to $\sqrt\varepsilon$; f64 merges at frame 223). Totals
+//! over the active frames; "residual" is the worst KKT relative residual after refinement;
+//! NE: the projection's normal-equation solves:
+//!
+//! | f32 variant | nnz(L) | merge | max DOG | residual | factorizations | refinement | NE |
+//! |---|---|---|---|---|---|---|---|
+//! | delayed duals | 49,875 | 196 | 1.54e-4 | 3.0e-4 | 244 | 0 | 1129 |
+//! | AMD, $-\sqrt\varepsilon$ on structural zeros, plain refinement | 16,756 | 499 | 1.59e-4 | 8.1e-2 | 541 | 1562 | 1348 |
+//! | AMD, $\delta_d = 10^{-3}$, plain refinement | 16,756 | 378 | 1.60e-4 | 1.4e-2 | 414 | 533 | 1487 |
+//! | AMD, $\delta_d = 10^{-2}$, plain refinement | 16,756 | 203 | 2.80e-4 | 4.1e-3 | 273 | 90 | 1487 |
+//! | AMD, $\delta_d = 10^{-2}$, refined to $K_\delta$ (a proximal step) | 16,756 | 189 | 3.71e-4 | ($K_\delta$) 3.3e-4 | 237 | 95 | 1790 |
+//! | AMD, $\delta_d = 10^{-3}$, GMRES(10) | 16,756 | 195 | 1.59e-4 | 3.2e-2 | 277 | 356 | — |
+//! | AMD, $\delta_d = 5 \cdot 10^{-3}$, GMRES(10) | 16,756 | 186 | 1.61e-4 | 7.1e-3 | 246 | 163 | 1288 |
+//! | **AMD, $\delta_d = 10^{-2}$, GMRES(10)** ([`Ordering::AmdQuasiDefinite`]) | 16,756 | 196 | 3.51e-4 | 3.4e-4 | 272 | 94 | 1578 |
+//! | AMD, $\delta_d = 2 \cdot 10^{-2}$, GMRES(10) | 16,756 | 201 | 1.05e-3 | 3.4e-4 | 288 | 64 | 1976 |
+//! | AMD, $\delta_d = 10^{-1}$, GMRES(10) | 16,756 | 256 | 8.3e-4 | 3.1e-4 | 408 | 3 | — |
+//!
+//! Only $10^{-2}$ with GMRES reaches the refinement target in every solve. Below it the
+//! shifted factor is too inexact in `f32` and GMRES stalls on a few solves; above it the
+//! first solve already meets the relative target $\lVert Kz - b\rVert_\infty \le
+//! \sqrt\varepsilon\lVert b\rVert_\infty$, whose norm the inertia rows dominate, while its
+//! constraint rows carry the shift's error $\delta_d\Sigma\lambda$: the step leaves more of
+//! $C$ to the projection (frame 33: $\lVert C\rVert_\infty$ 1.1e-2 before the projection
+//! against 2.5e-3 with the delayed order, 12 projection iterations against 6) and the DOG
+//! residual rises. Testing the equilibrated residual
+//! $\lVert D(b - Kz)\rVert_\infty / \lVert Db\rVert_\infty$ instead (GMRES on $DKD$) brought
+//! the DOG residual to 2.1e-4 and the normal-equation solves to 1,038, but that target is
+//! below what `f32` resolves, so every solve ran its 10 iterations (1,590 in the turn).
+//!
+//! On the Cortex-M4F firmware (`python3 embedded/baseline.py --run`, QEMU instruction
+//! counts), against the delayed order: median active step 45.1 M → 24.1 M instructions, p99
+//! 104.6 M → 104.1 M, max 106.2 M → 127.5 M (frame 34, the projection's 12-iteration frames
+//! above), median resting step 0.50 M → 0.56 M, heap peak 850,476 → 688,994 B, flash
+//! 245,240 → 255,176 B (GMRES), the merge at frame 196 both; all five checks pass.
+//!
+//! The merge frame is not a precision-independent figure: the released page stands nearly
+//! upright, and when it falls depends on rounding. With the refinement tolerance set to
+//! $10^{-4}$, $2 \cdot 10^{-4}$, $\sqrt\varepsilon$, $6.4 \cdot 10^{-6}$ and $10^{-10}$ the
+//! delayed order merges at 199, 184, 196, 341 and 187; [`Ordering::AmdQuasiDefinite`] at
+//! 187, 177, 196 and 178 (the first four); f64 at tolerances $10^{-6}$ to $10^{-12}$ at 223,
+//! 223, 240, 232 and 235.
 
 use alloc::vec;
 use alloc::vec::Vec;
@@ -59,7 +116,21 @@ pub enum Ordering {
     /// AMD, with each constraint row delayed until its primal neighbours are eliminated
     /// (module docs).
     AmdDelayedDuals,
+    /// AMD's order, with every constraint pivot shifted by
+    /// $-$[`QUASI_DEFINITE_SHIFT`]$\thinspace\sigma_k$ (a quasi-definite factor, stable in
+    /// any order) and the solves refined against the true matrix by restarted GMRES with
+    /// that factor as the preconditioner ([`crate::gmres`]; module docs).
+    AmdQuasiDefinite,
 }
+
+/// The dual shift $\delta_d$ of [`Ordering::AmdQuasiDefinite`], relative to each constraint
+/// pivot's natural size $\sigma_k = \lVert J_c\rVert_2^2 / P$ ([`crate::Kkt::factorize`];
+/// module docs: $5 \cdot 10^{-3}$ leaves `f32` factors too inexact for the refinement,
+/// $2 \cdot 10^{-2}$ raises the DOG residual to 1e-3).
+pub const QUASI_DEFINITE_SHIFT: f64 = 1e-2;
+
+/// Restart length of [`Ordering::AmdQuasiDefinite`]'s GMRES.
+pub const QUASI_DEFINITE_RESTART: usize = 10;
 
 /// The permutation `perm[new] = old` of `ordering` on `pattern`.
 #[must_use]
@@ -67,7 +138,7 @@ pub fn permutation(pattern: &KktPattern, ordering: Ordering) -> Vec<u32> {
     let n = pattern.order();
     match ordering {
         Ordering::Natural => (0..n as u32).collect(),
-        Ordering::Amd => amd_order(pattern),
+        Ordering::Amd | Ordering::AmdQuasiDefinite => amd_order(pattern),
         Ordering::AmdDelayedDuals => delay_duals(pattern, &amd_order(pattern)),
     }
 }
@@ -167,7 +238,12 @@ mod tests {
         for hessian in [false, true] {
             let pattern = Chain::new(9).pattern(hessian);
             let n = pattern.order();
-            for ordering in [Ordering::Natural, Ordering::Amd, Ordering::AmdDelayedDuals] {
+            for ordering in [
+                Ordering::Natural,
+                Ordering::Amd,
+                Ordering::AmdDelayedDuals,
+                Ordering::AmdQuasiDefinite,
+            ] {
                 let perm = permutation(&pattern, ordering);
                 let mut sorted = perm.clone();
                 sorted.sort_unstable();
@@ -180,6 +256,11 @@ mod tests {
             }
             let natural = permutation(&pattern, Ordering::Natural);
             assert_eq!(natural, (0..n as u32).collect::<Vec<_>>());
+            // The quasi-definite variant keeps AMD's order, so its fill.
+            assert_eq!(
+                permutation(&pattern, Ordering::AmdQuasiDefinite),
+                permutation(&pattern, Ordering::Amd)
+            );
         }
     }
 

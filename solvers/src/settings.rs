@@ -49,7 +49,7 @@ pub struct Settings<T: Real> {
     /// the violation anyway. Finite, $\ge 0$.
     pub merit_slack: T,
     /// Elimination order of the symbolic analysis. Default: [`Ordering::Amd`] in `f64`,
-    /// [`Ordering::AmdDelayedDuals`] in `f32` (see [`Ordering`] for the measurements).
+    /// [`Ordering::AmdQuasiDefinite`] in `f32` (see [`Ordering`] for the measurements).
     pub ordering: Ordering,
     /// Factorize the Ruiz-equilibrated KKT matrix ([`crate::Kkt::set_equilibration`]).
     /// Default: on in `f32`, off in `f64`. The book's KKT spans masses over $h^2$, isometry
@@ -107,7 +107,7 @@ impl<T: Real> Default for Settings<T> {
             ordering: if T::EPSILON.to_f64() < 1e-10 {
                 Ordering::Amd
             } else {
-                Ordering::AmdDelayedDuals
+                Ordering::AmdQuasiDefinite
             },
             equilibrate: T::EPSILON.to_f64() > 1e-10,
             pivot_epsilon: T::from_f64(1000.0) * T::EPSILON,
