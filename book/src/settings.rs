@@ -119,12 +119,16 @@ pub struct BookSettings<T: Real> {
     pub constraint_tolerance: T,
     /// ...or this many iterations ran (0 switches it off: the seed's plain step, which
     /// leaves DOG residuals of a few 1e-2 while the page moves fast), per projection pass.
-    /// Default 5. Where the page lands on a block, projection and collision alternate (up
-    /// to twice `collision_rounds` passes) and the step ends on a collision push; a pass
-    /// that stops short leaves more for the pushes to break. Measured with `folio run` on
-    /// the built-in scenes, the largest DOG residual with 3 → 5: page-turn 2.6e-4 → 1.2e-4,
-    /// stack 7.3e-4 → 2.8e-4, bookmark-flip 1.4e-4 → 1.0e-4; peek and paperback stay
-    /// below 1e-4, and every penetration stays at rounding level.
+    /// Default 5 in `f64`, 3 in `f32`. Where the page lands on a block, projection and
+    /// collision alternate (up to twice `collision_rounds` passes) and the step ends on a
+    /// collision push; a pass that stops short leaves more for the pushes to break.
+    /// Measured in `f64` with `folio run` on the built-in scenes, the largest DOG residual
+    /// with 3 → 5: page-turn 2.6e-4 → 1.2e-4, stack 7.3e-4 → 2.8e-4, bookmark-flip
+    /// 1.4e-4 → 1.0e-4; peek and paperback stay below 1e-4, and every penetration stays at
+    /// rounding level. In `f32` (quasi-definite KKT order) more passes did not help: on the
+    /// page turn, 3, 4, 5, 6 and 8 gave DOG residuals of 3.5e-4, 5.4e-4, 4.8e-4, 4.8e-4 and
+    /// 4.8e-4 (`cargo run --release -p folio-bench --example frame_work` with the field
+    /// set).
     pub max_corrections: u32,
     /// Contact spring stiffness per unit of node mass ($s^{-2}$): a node pushed out of a
     /// block, the cover or the table in one step is held on that surface by a
@@ -187,7 +191,7 @@ impl<T: Real> Default for BookSettings<T> {
             merge_speed: T::from_f64(0.5),
             merge_frames: 10,
             constraint_tolerance: T::from_f64(1e-4),
-            max_corrections: 5,
+            max_corrections: if T::EPSILON.to_f64() < 1e-10 { 5 } else { 3 },
             contact_pin_weight: T::from_f64(1e3),
             contact_stiffness: T::from_f64(if T::EPSILON.to_f64() < 1e-10 {
                 1e6
