@@ -33,6 +33,7 @@
 use alloc::vec;
 use alloc::vec::Vec;
 use folio_kernels::Real;
+use folio_kernels::fused::{mul_add, mul_sub};
 
 use crate::kkt::{max_abs, symmetric_product};
 use crate::ldlt::{FactorOutcome, Ldlt};
@@ -214,7 +215,8 @@ impl<T: Real> NormalEquations<T> {
                     if a as usize > b {
                         break;
                     }
-                    self.column[a as usize] += kkt_values[slot as usize] * w;
+                    let a = a as usize;
+                    self.column[a] = mul_add(self.column[a], kkt_values[slot as usize], w);
                 }
             }
             let range = self.pattern.col_ptr[b] as usize..self.pattern.col_ptr[b + 1] as usize;
@@ -226,7 +228,7 @@ impl<T: Real> NormalEquations<T> {
                 self.column[a as usize] = T::ZERO;
             }
             if let Some(diagonal) = self.values[range].last_mut() {
-                *diagonal += damping * *diagonal;
+                *diagonal = mul_add(*diagonal, damping, *diagonal);
             }
         }
     }
@@ -240,7 +242,7 @@ impl<T: Real> NormalEquations<T> {
                 .iter()
                 .zip(&self.dof_slot[range])
             {
-                sum += kkt_values[slot as usize] * mu[a as usize];
+                sum = mul_add(sum, kkt_values[slot as usize], mu[a as usize]);
             }
             *out = -self.inverse_w[d] * sum;
         }
@@ -333,7 +335,7 @@ impl<T: Real> NormalEquations<T> {
             let beta = if k == 0 { T::ZERO } else { rz_next / rz };
             rz = rz_next;
             for (p, &z) in self.direction.iter_mut().zip(&self.preconditioned) {
-                *p = z + beta * *p;
+                *p = mul_add(z, beta, *p);
             }
             symmetric_product(
                 &self.pattern,
@@ -351,8 +353,8 @@ impl<T: Real> NormalEquations<T> {
                 .zip(self.residual.iter_mut())
                 .zip(self.direction.iter().zip(&self.product))
             {
-                *m += alpha * p;
-                *r -= alpha * q;
+                *m = mul_add(*m, alpha, p);
+                *r = mul_sub(*r, alpha, q);
             }
             residual = max_abs(&self.residual);
             if residual <= target || !residual.is_finite() {
@@ -376,7 +378,9 @@ impl<T: Real> NormalEquations<T> {
 /// $u^\top v$.
 #[inline]
 fn dot<T: Real>(u: &[T], v: &[T]) -> T {
-    u.iter().zip(v).fold(T::ZERO, |acc, (&a, &b)| acc + a * b)
+    u.iter()
+        .zip(v)
+        .fold(T::ZERO, |acc, (&a, &b)| mul_add(acc, a, b))
 }
 
 /// The primal rows of constraint column `c` of `kkt`: the dofs of row `c` of $J$.
