@@ -33,6 +33,7 @@ pub mod dog_laplacian;
 pub mod edge_cosine;
 pub mod error;
 pub mod fix;
+pub mod fused;
 pub mod glue;
 pub mod gravity;
 pub mod hinge;

@@ -1,6 +1,7 @@
 //! The evaluating visitor: sums potentials, writes constraint values, and scatters
 //! gradients, Hessians and Jacobians through the pattern's precomputed slots.
 
+use folio_kernels::fused::mul_add;
 use folio_kernels::{Constraint, Mat3Ops, Potential, Real, Vec3Ops};
 
 use crate::model::{ConstraintSet, PotentialSet, TermVisitor};
@@ -81,7 +82,8 @@ impl<T: Real> Assemble<'_, T> {
                         } else {
                             entry(q, p)
                         };
-                        self.values[s as usize] += weight * v;
+                        let s = s as usize;
+                        self.values[s] = mul_add(self.values[s], weight, v);
                     }
                 }
             }
@@ -90,7 +92,8 @@ impl<T: Real> Assemble<'_, T> {
                 for q in 0..stride {
                     let s = slots[p * stride + q];
                     if s != NONE {
-                        self.values[s as usize] += weight * entry(p, q);
+                        let s = s as usize;
+                        self.values[s] = mul_add(self.values[s], weight, entry(p, q));
                     }
                 }
             }
@@ -116,7 +119,7 @@ impl<T: Real> TermVisitor<T> for Assemble<'_, T> {
         let w = set.weight;
         for (t, term) in set.terms().iter().enumerate() {
             let xs = gather::<T, N>(self.x, &term.nodes);
-            self.energy += w * term.kernel.value(&xs);
+            self.energy = mul_add(self.energy, w, term.kernel.value(&xs));
             if matches!(self.derivatives, Derivatives::None | Derivatives::Jacobian) {
                 continue;
             }
@@ -126,7 +129,8 @@ impl<T: Real> TermVisitor<T> for Assemble<'_, T> {
                 for i in 0..3 {
                     let d = dofs[3 * a + i];
                     if d != NONE {
-                        self.gradient[d as usize] += w * ga.get(i);
+                        let d = d as usize;
+                        self.gradient[d] = mul_add(self.gradient[d], w, ga.get(i));
                     }
                 }
             }

@@ -4,6 +4,7 @@
 use alloc::vec;
 use alloc::vec::Vec;
 use folio_kernels::Real;
+use folio_kernels::fused::mul_add;
 
 use crate::gmres::{Gmres, Operator};
 use crate::ldlt::{FactorOutcome, Ldlt};
@@ -356,9 +357,9 @@ pub(crate) fn symmetric_product<T: Real>(
         let mut sum = T::ZERO;
         for (&r, &v) in pattern.row_idx[range.clone()].iter().zip(&values[range]) {
             let r = r as usize;
-            out[r] += v * z[c];
+            out[r] = mul_add(out[r], v, z[c]);
             if r != c {
-                sum += v * z[r];
+                sum = mul_add(sum, v, z[r]);
             }
         }
         out[c] += sum;

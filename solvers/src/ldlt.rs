@@ -24,6 +24,7 @@
 use alloc::vec;
 use alloc::vec::Vec;
 use folio_kernels::Real;
+use folio_kernels::fused::mul_sub;
 
 use crate::error::SolverError;
 use crate::index::Index;
@@ -224,10 +225,10 @@ impl<T: Real> Ldlt<T> {
                 y[j] = T::ZERO;
                 let start = s.l_ptr[j] as usize;
                 for (&r, &lr) in l_row[start..pos].iter().zip(&l[start..pos]) {
-                    y[r.get()] -= lr * yj;
+                    y[r.get()] = mul_sub(y[r.get()], lr, yj);
                 }
                 let lkj = yj / d[j];
-                diagonal -= lkj * yj;
+                diagonal = mul_sub(diagonal, lkj, yj);
                 l[pos] = lkj;
             }
             if !diagonal.is_finite() {
@@ -284,7 +285,7 @@ impl<T: Real> Ldlt<T> {
             let xj = x[j];
             let range = l_ptr[j] as usize..l_ptr[j + 1] as usize;
             for (&r, &l) in l_row[range.clone()].iter().zip(&self.l[range]) {
-                x[r.get()] -= l * xj;
+                x[r.get()] = mul_sub(x[r.get()], l, xj);
             }
         }
         for (xj, &dj) in x.iter_mut().zip(&self.d) {
@@ -294,7 +295,7 @@ impl<T: Real> Ldlt<T> {
             let range = l_ptr[j] as usize..l_ptr[j + 1] as usize;
             let mut sum = x[j];
             for (&r, &l) in l_row[range.clone()].iter().zip(&self.l[range]) {
-                sum -= l * x[r.get()];
+                sum = mul_sub(sum, l, x[r.get()]);
             }
             x[j] = sum;
         }

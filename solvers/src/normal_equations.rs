@@ -33,6 +33,7 @@
 use alloc::vec;
 use alloc::vec::Vec;
 use folio_kernels::Real;
+use folio_kernels::fused::{mul_add, mul_sub};
 
 use crate::kkt::{max_abs, symmetric_product};
 use crate::ldlt::{FactorOutcome, Ldlt};
@@ -158,7 +159,7 @@ impl<T: Real> NormalEquations<T> {
                     if a > b {
                         return false;
                     }
-                    column[a] += j_ad * w;
+                    column[a] = mul_add(column[a], j_ad, w);
                     true
                 });
             }
@@ -171,7 +172,7 @@ impl<T: Real> NormalEquations<T> {
                 self.column[a as usize] = T::ZERO;
             }
             if let Some(diagonal) = self.values[range].last_mut() {
-                *diagonal += damping * *diagonal;
+                *diagonal = mul_add(*diagonal, damping, *diagonal);
             }
         }
     }
@@ -181,7 +182,7 @@ impl<T: Real> NormalEquations<T> {
         for (d, out) in delta[..self.dofs].iter_mut().enumerate() {
             let mut sum = T::ZERO;
             self.transpose.for_each(d, kkt_values, |a, j_ad| {
-                sum += j_ad * mu[a];
+                sum = mul_add(sum, j_ad, mu[a]);
                 true
             });
             *out = -self.inverse_w[d] * sum;
@@ -275,7 +276,7 @@ impl<T: Real> NormalEquations<T> {
             let beta = if k == 0 { T::ZERO } else { rz_next / rz };
             rz = rz_next;
             for (p, &z) in self.direction.iter_mut().zip(&self.preconditioned) {
-                *p = z + beta * *p;
+                *p = mul_add(z, beta, *p);
             }
             symmetric_product(
                 &self.pattern,
@@ -293,8 +294,8 @@ impl<T: Real> NormalEquations<T> {
                 .zip(self.residual.iter_mut())
                 .zip(self.direction.iter().zip(&self.product))
             {
-                *m += alpha * p;
-                *r -= alpha * q;
+                *m = mul_add(*m, alpha, p);
+                *r = mul_sub(*r, alpha, q);
             }
             residual = max_abs(&self.residual);
             if residual <= target || !residual.is_finite() {
@@ -359,7 +360,9 @@ fn structure(kkt: &KktPattern) -> (Transpose, KktPattern, Symbolic) {
 /// $u^\top v$.
 #[inline]
 fn dot<T: Real>(u: &[T], v: &[T]) -> T {
-    u.iter().zip(v).fold(T::ZERO, |acc, (&a, &b)| acc + a * b)
+    u.iter()
+        .zip(v)
+        .fold(T::ZERO, |acc, (&a, &b)| mul_add(acc, a, b))
 }
 
 /// The primal rows of constraint column `c` of `kkt`: the dofs of row `c` of $J$.

@@ -6,7 +6,7 @@
 #![allow(unsafe_code)]
 
 use core::alloc::{GlobalAlloc, Layout};
-use core::sync::atomic::{AtomicUsize, Ordering};
+use core::cell::Cell;
 use std::alloc::System;
 
 use folio_book::{Book, BookSettings, Script};
@@ -16,11 +16,26 @@ use folio_tests::models::{Chain, DogSheet};
 
 struct Counting;
 
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+thread_local! {
+    /// Allocations by this thread: the test harness's own threads (its progress messages,
+    /// for example "has been running for over 60 seconds" under a slow emulator) are not
+    /// the code under test.
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+/// Counts one allocation on the calling thread (none while the thread shuts down).
+fn count() {
+    let _ = ALLOCATIONS.try_with(|n| n.set(n.get() + 1));
+}
+
+/// Allocations by the calling thread so far.
+fn allocations() -> usize {
+    ALLOCATIONS.with(Cell::get)
+}
 
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        count();
         // SAFETY: forwarded unchanged to the system allocator.
         unsafe { System.alloc(layout) }
     }
@@ -29,7 +44,7 @@ unsafe impl GlobalAlloc for Counting {
         unsafe { System.dealloc(ptr, layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        count();
         // SAFETY: as `realloc`'s contract, forwarded.
         unsafe { System.realloc(ptr, layout, new_size) }
     }
@@ -47,17 +62,17 @@ fn allocations_after_setup<T: Real, M: Model<T>>(
 ) -> usize {
     let mut solver = Solver::new(settings).unwrap();
     assert!(solver.step(model, state).unwrap().analysed);
-    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    let before = allocations();
     for _ in 0..steps {
         let report = solver.step(model, state).unwrap();
         assert!(report.status.advanced(), "{report:?}");
     }
-    ALLOCATIONS.load(Ordering::SeqCst) - before
+    allocations() - before
 }
 
 #[test]
 fn steps_after_setup_do_not_allocate() {
-    // Everything in one test: the counter is global and tests run on threads.
+    // Every case on this thread: the counter is per thread.
     let sheet = DogSheet::<f64>::new(11, 8, 12.0 / 11.0);
     let mut state = sheet.rolled(6.0);
     let n = allocations_after_setup(&sheet, &mut state, Settings::default(), 10);
@@ -101,15 +116,15 @@ fn steps_after_setup_do_not_allocate() {
 fn book_page_turn<T: Real>() -> (usize, usize) {
     let script = Script::parse(include_str!("../fixtures/page_turn.input")).unwrap();
     let mut book = Book::<T>::new(BookSettings::default()).unwrap();
-    let (mut allocations, mut contact_tests) = (0, 0);
+    let (mut in_steps, mut contact_tests) = (0, 0);
     for frame in 0..script.frames {
         for e in script.events_at(frame) {
             book.apply(script.camera, script.forward, e.action).unwrap();
         }
-        let before = ALLOCATIONS.load(Ordering::SeqCst);
+        let before = allocations();
         let report = book.step().unwrap();
-        allocations += ALLOCATIONS.load(Ordering::SeqCst) - before;
+        in_steps += allocations() - before;
         contact_tests += report.contacts.tested;
     }
-    (allocations, contact_tests)
+    (in_steps, contact_tests)
 }
