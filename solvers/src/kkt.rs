@@ -8,6 +8,7 @@ use folio_kernels::Real;
 use crate::ldlt::{FactorOutcome, Ldlt};
 use crate::ordering::Ordering;
 use crate::pattern::KktPattern;
+use crate::settings::Parallelism;
 use crate::symbolic::Symbolic;
 
 /// Most primal shifts of [`Kkt::factorize_with_inertia_correction`] ($\beta$ up to
@@ -29,7 +30,8 @@ pub struct Refinement<T> {
 /// upper-triangle values (`nnz` of the pattern) and five work vectors of the matrix order
 /// $n$; [`Kkt::set_equilibration`] adds the scaling's three buffers of order $n$ (the
 /// scaled values are not stored: the factorization scales each entry as it reads it). Everything is allocated at setup ([`Kkt::new`], [`Kkt::set_equilibration`]);
-/// factorizing and solving allocate nothing. The factor is made for this very analysis, so the two always pair.
+/// factorizing and solving allocate nothing (on one thread: a two-thread factorization,
+/// [`Kkt::with_parallelism`], spawns a scoped thread). The factor is made for this very analysis, so the two always pair.
 #[derive(Clone, Debug)]
 pub struct Kkt<T> {
     /// The pattern and scatter maps.
@@ -54,13 +56,32 @@ pub struct Kkt<T> {
 }
 
 impl<T: Real> Kkt<T> {
-    /// Analyses `pattern` (allocates every buffer).
+    /// Analyses `pattern` (allocates every buffer), for one thread.
     #[must_use]
     pub fn new(pattern: KktPattern, ordering: Ordering) -> Self {
-        let symbolic = Symbolic::analyse(&pattern, ordering);
+        Self::with_parallelism(pattern, ordering, Parallelism::One)
+    }
+
+    /// Analyses `pattern` for the threads `parallelism` chooses at its order: one thread in
+    /// `ordering` ([`Symbolic::analyse`]), or two in the split order
+    /// ([`Symbolic::analyse_split`], its halves in `ordering`).
+    #[must_use]
+    pub fn with_parallelism(
+        pattern: KktPattern,
+        ordering: Ordering,
+        parallelism: Parallelism,
+    ) -> Self {
+        let threads = parallelism.threads(pattern.order());
+        let symbolic = if threads == 2 {
+            Symbolic::analyse_split(&pattern, ordering)
+        } else {
+            Symbolic::analyse(&pattern, ordering)
+        };
+        let mut factor = Ldlt::new(&symbolic);
+        factor.set_threads(threads);
         let n = pattern.order();
         Self {
-            factor: Ldlt::new(&symbolic),
+            factor,
             values: vec![T::ZERO; pattern.nnz()],
             symbolic,
             pattern,
@@ -72,6 +93,12 @@ impl<T: Real> Kkt<T> {
             previous: vec![T::ZERO; n],
             factorizations: 0,
         }
+    }
+
+    /// Threads of the next factorizations (see [`Ldlt::set_threads`]): 2 only on a split
+    /// analysis with `std`. Returns the threads it will use.
+    pub fn set_threads(&mut self, threads: usize) -> usize {
+        self.factor.set_threads(threads)
     }
 
     /// Numeric factorizations since this system was made (inertia-correction retries

@@ -30,7 +30,7 @@ use crate::normal_equations::NormalEquations;
 use crate::ordering::Ordering;
 use crate::pattern::KktPattern;
 use crate::report::{StepReport, StepStatus};
-use crate::settings::Settings;
+use crate::settings::{Parallelism, Settings};
 
 mod line_search;
 mod projection;
@@ -63,6 +63,8 @@ struct Workspace<T: Real> {
     ordering: Ordering,
     /// [`Settings::equilibrate`] as the KKT was set up.
     equilibrate: bool,
+    /// [`Settings::parallelism`] as the KKT was set up.
+    parallelism: Parallelism,
     kkt: Kkt<T>,
     /// Right-hand side, then product scratch, then solution: `dofs + rows` each.
     rhs: Vec<T>,
@@ -166,6 +168,7 @@ impl<T: Real> Solver<T> {
                 && w.ordering == s.ordering
                 && w.kkt.pattern.with_constraint_hessian == s.constraint_hessian
                 && w.equilibrate == s.equilibrate
+                && w.parallelism == s.parallelism
             {
                 return Ok(false);
             }
@@ -174,13 +177,14 @@ impl<T: Real> Solver<T> {
         let pattern = KktPattern::build(model, s.constraint_hessian)?;
         let (dofs, rows, nodes) = (pattern.dofs, pattern.rows, model.node_count());
         let normal = NormalEquations::new(&pattern);
-        let mut kkt = Kkt::new(pattern, s.ordering);
+        let mut kkt = Kkt::with_parallelism(pattern, s.ordering, s.parallelism);
         kkt.set_equilibration(s.equilibrate);
         let n = dofs + rows;
         self.work = Some(Workspace {
             version: model.topology_version(),
             ordering: s.ordering,
             equilibrate: s.equilibrate,
+            parallelism: s.parallelism,
             kkt,
             rhs: vec![T::ZERO; n],
             product: vec![T::ZERO; n],
