@@ -261,26 +261,15 @@ impl<T: Real> Ldlt<T> {
     ) -> FactorOutcome {
         let n = job.symbolic.n;
         let Some(split) = job.symbolic.split else {
-            return self.whole().factor(job, arrays, 0..n);
+            return self.whole().0.factor(job, arrays, 0..n);
         };
         let halves = self.factor_halves(job, arrays, split);
         if let FactorOutcome::NonFinite { .. } = halves {
             return halves;
         }
-        let (first, second) = self.stash.split_at(self.stash.len() / 2);
-        let rows = Part {
-            y: &mut self.work,
-            reach: &mut self.reach,
-            seen: &mut self.seen,
-            columns: Columns {
-                l: &mut self.l,
-                d: &mut self.d,
-                fill: &mut self.fill,
-                first: 0,
-                l_first: 0,
-            },
-        };
-        rows.factor_separator(job, arrays, split.b, (first, second), &self.top)
+        let (rows, stash, top) = self.whole();
+        let halves_rows = stash.split_at(stash.len() / 2);
+        rows.factor_separator(job, arrays, split.b, halves_rows, top)
             .after(halves)
     }
 
@@ -301,31 +290,11 @@ impl<T: Real> Ldlt<T> {
         let (fill_first, fill_second) = self.fill[..b].split_at_mut(a);
         let half = self.stash.len() / 2;
         let (stash_first, stash_second) = self.stash.split_at_mut(half);
-        let half_a = Part {
-            y: &mut self.work,
-            reach: &mut self.reach,
-            seen: &mut self.seen,
-            columns: Columns {
-                l: l_first,
-                d: d_first,
-                fill: fill_first,
-                first: 0,
-                l_first: 0,
-            },
-        };
+        let columns = Columns::new(l_first, d_first, fill_first, (0, 0));
+        let half_a = Part::new(&mut self.work, &mut self.reach, &mut self.seen, columns);
         let w = &mut self.second;
-        let half_b = Part {
-            y: &mut w.y,
-            reach: &mut w.reach,
-            seen: &mut w.seen,
-            columns: Columns {
-                l: l_second,
-                d: d_second,
-                fill: fill_second,
-                first: a,
-                l_first: l_a,
-            },
-        };
+        let columns = Columns::new(l_second, d_second, fill_second, (a, l_a));
+        let half_b = Part::new(&mut w.y, &mut w.reach, &mut w.seen, columns);
         let run_b = move || half_b.factor_half(job, arrays, a..b, b, stash_second);
         #[cfg(feature = "std")]
         if self.threads == 2 {
@@ -345,20 +314,12 @@ impl<T: Real> Ldlt<T> {
         run_b().after(first)
     }
 
-    /// This factor's buffers as one [`Part`], every column.
-    fn whole(&mut self) -> Part<'_, T> {
-        Part {
-            y: &mut self.work,
-            reach: &mut self.reach,
-            seen: &mut self.seen,
-            columns: Columns {
-                l: &mut self.l,
-                d: &mut self.d,
-                fill: &mut self.fill,
-                first: 0,
-                l_first: 0,
-            },
-        }
+    /// This factor's buffers as one [`Part`], every column, with the halves' partial
+    /// separator rows and the first separator ancestors.
+    fn whole(&mut self) -> (Part<'_, T>, &[T], &[u32]) {
+        let columns = Columns::new(&mut self.l, &mut self.d, &mut self.fill, (0, 0));
+        let part = Part::new(&mut self.work, &mut self.reach, &mut self.seen, columns);
+        (part, &self.stash, &self.top)
     }
 }
 
@@ -390,7 +351,22 @@ struct Columns<'a, T> {
     l_first: usize,
 }
 
-impl<T: Real> Part<'_, T> {
+impl<'a, T: Real> Part<'a, T> {
+    /// A part of the work vector `y`, row list `reach` and bit set `seen`, on `columns`.
+    fn new(
+        y: &'a mut [T],
+        reach: &'a mut [u32],
+        seen: &'a mut [usize],
+        columns: Columns<'a, T>,
+    ) -> Self {
+        Self {
+            y,
+            reach,
+            seen,
+            columns,
+        }
+    }
+
     /// The up-looking factorization (module docs) of rows `rows`, whose columns all lie in
     /// this part's range.
     fn factor<I: Index>(
@@ -409,11 +385,7 @@ impl<T: Real> Part<'_, T> {
         arrays: &Arrays<I>,
         rows: Range<usize>,
     ) -> FactorOutcome {
-        let Job {
-            symbolic: s,
-            values,
-            ..
-        } = job;
+        let (s, values) = (job.symbolic, job.values);
         let (a_row, a_slot) = (&arrays.a_row, &arrays.a_slot);
         let (y, reach, seen) = (&mut *self.y, &mut *self.reach, &mut *self.seen);
         let mut pivots = Pivots::default();
@@ -459,11 +431,7 @@ impl<T: Real> Part<'_, T> {
         if let FactorOutcome::NonFinite { .. } = own {
             return own;
         }
-        let Job {
-            symbolic: s,
-            values,
-            ..
-        } = job;
+        let (s, values) = (job.symbolic, job.values);
         let (a_row, a_slot) = (&arrays.a_row, &arrays.a_slot);
         let (y, reach, seen) = (&mut *self.y, &mut *self.reach, &mut *self.seen);
         let (first, end) = (columns.start == 0, columns.end);
@@ -549,7 +517,24 @@ impl<T: Real> Part<'_, T> {
     }
 }
 
-impl<T: Real> Columns<'_, T> {
+impl<'a, T: Real> Columns<'a, T> {
+    /// Columns `first..` of `d` and `fill`, their values of $L$ in `l` from position
+    /// `l_first` on.
+    fn new(
+        l: &'a mut [T],
+        d: &'a mut [T],
+        fill: &'a mut [u32],
+        (first, l_first): (usize, usize),
+    ) -> Self {
+        Self {
+            l,
+            d,
+            fill,
+            first,
+            l_first,
+        }
+    }
+
     /// Row $k$'s columns `row`, ascending: $L_{kj} = y_j / d_j$ goes to column $j$'s next
     /// free position, $y \mathrel{-}= L_{:j}\thinspace y_j$ over the column's earlier rows,
     /// and the returned diagonal is `diagonal` $- \sum_j L_{kj} y_j$. Leaves $y_j = 0$.
