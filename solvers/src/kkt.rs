@@ -72,7 +72,7 @@ impl<T: Real> Kkt<T> {
         parallelism: Parallelism,
     ) -> Self {
         let threads = parallelism.threads(pattern.order());
-        let symbolic = if threads == 2 {
+        let symbolic = if cfg!(feature = "std") && threads == 2 {
             Symbolic::analyse_split(&pattern, ordering)
         } else {
             Symbolic::analyse(&pattern, ordering)

@@ -25,7 +25,8 @@
 //! $y_i = y^A_i + y^B_i$ over the separator's columns, on one thread. This adds the halves'
 //! contributions in another order than the row-by-row factor of the same order would (the
 //! rounding differs in the last bits), and the same on one thread as on two: the split
-//! factor is bit for bit the same whatever the threads.
+//! factor is bit for bit the same whatever the threads. Without the `std` feature a split
+//! analysis is factorized row by row like any other.
 
 use alloc::vec;
 use alloc::vec::Vec;
@@ -260,7 +261,10 @@ impl<T: Real> Ldlt<T> {
         arrays: &Arrays<I>,
     ) -> FactorOutcome {
         let n = job.symbolic.n;
-        let Some(split) = job.symbolic.split else {
+        // Without `std` a split analysis is factorized row by row like any other (the
+        // microcontroller's flash does not carry the split factor).
+        let split = job.symbolic.split.filter(|_| cfg!(feature = "std"));
+        let Some(split) = split else {
             return self.whole().0.factor(job, arrays, 0..n);
         };
         let halves = self.factor_halves(job, arrays, split);
