@@ -14,31 +14,17 @@ use core::hint::black_box;
 use faer::Par;
 use faer::dyn_stack::MemStack;
 use folio_bench::kkt::{
-    DogKkt, exit_code, faer_factor, faer_scratch, faer_solve, faer_symbolic, flag_value, parse_grid,
+    DogKkt, exit_code, faer_factor, faer_scratch, faer_solve, faer_symbolic, flag_value, median_us,
+    parse_grid,
 };
 use folio_solvers::Ordering;
 use folio_solvers::ldlt::FactorOutcome;
 use folio_solvers::matrix_market::write_matrix_market;
 use folio_solvers::symbolic::Symbolic;
 use std::process::ExitCode;
-use std::time::Instant;
 
 fn main() -> ExitCode {
     exit_code("kkt_peers", run())
-}
-
-/// The median wall time of `reps` calls of `f` (after one untimed call), in microseconds.
-fn median_us(reps: usize, mut f: impl FnMut()) -> f64 {
-    f();
-    let mut times: Vec<f64> = (0..reps)
-        .map(|_| {
-            let start = Instant::now();
-            f();
-            start.elapsed().as_secs_f64() * 1e6
-        })
-        .collect();
-    times.sort_by(f64::total_cmp);
-    times[times.len() / 2]
 }
 
 /// $\lVert b - Kz\rVert_\infty / \lVert b\rVert_\infty$ on the unregularized matrix.

@@ -10,9 +10,10 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, Mat, MatMut, Par, Side};
-use folio_solvers::{Kkt, Ordering, Settings, Solver, State};
+use folio_solvers::{Kkt, Ordering, Parallelism, Settings, Solver, State};
 use folio_tests::models::DogSheet;
 use std::process::ExitCode;
+use std::time::Instant;
 
 /// The DOG sheet sizes the issue asks for (quads across, quads along the binding).
 pub const SIZES: [(usize, usize); 4] = [(11, 8), (16, 12), (22, 16), (32, 24)];
@@ -31,6 +32,20 @@ pub fn parse_grid(text: &str) -> Result<(usize, usize), String> {
         return Err(bad());
     }
     Ok((w, h))
+}
+
+/// The median wall time of `reps` calls of `f` (after one untimed call), in microseconds.
+pub fn median_us(reps: usize, mut f: impl FnMut()) -> f64 {
+    f();
+    let mut times: Vec<f64> = (0..reps)
+        .map(|_| {
+            let start = Instant::now();
+            f();
+            start.elapsed().as_secs_f64() * 1e6
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times[times.len() / 2]
 }
 
 /// An example's exit: success, or `program: error` on stderr and a failure code.
@@ -100,6 +115,7 @@ impl DogKkt {
         sheet.set_target(state.x[sheet.grabbed_node()]);
         let settings = Settings {
             ordering,
+            parallelism: Parallelism::One,
             ..Settings::default()
         };
         let mut solver = Solver::new(settings).map_err(|e| format!("settings: {e}"))?;

@@ -10,6 +10,7 @@ use crate::gmres::{Gmres, Operator};
 use crate::ldlt::{FactorOutcome, Ldlt};
 use crate::ordering::{Ordering, QUASI_DEFINITE_RESTART, QUASI_DEFINITE_SHIFT};
 use crate::pattern::KktPattern;
+use crate::settings::Parallelism;
 use crate::symbolic::Symbolic;
 
 /// Most primal shifts of [`Kkt::factorize_with_inertia_correction`] ($\beta$ up to
@@ -32,7 +33,8 @@ pub struct Refinement<T> {
 /// $n$; [`Ordering::AmdQuasiDefinite`] adds its GMRES workspace ([`Gmres`], 12 vectors of
 /// order $n$); [`Kkt::set_equilibration`] adds the scaling's three buffers of order $n$ (the
 /// scaled values are not stored: the factorization scales each entry as it reads it). Everything is allocated at setup ([`Kkt::new`], [`Kkt::set_equilibration`]);
-/// factorizing and solving allocate nothing. The factor is made for this very analysis, so the two always pair.
+/// factorizing and solving allocate nothing (on one thread: a two-thread factorization,
+/// [`Kkt::with_parallelism`], spawns a scoped thread). The factor is made for this very analysis, so the two always pair.
 #[derive(Clone, Debug)]
 pub struct Kkt<T> {
     /// The pattern and scatter maps.
@@ -70,13 +72,31 @@ impl<T: Real> Operator<T> for Kkt<T> {
 }
 
 impl<T: Real> Kkt<T> {
-    /// Analyses `pattern` (allocates every buffer).
+    /// Analyses `pattern` (allocates every buffer), for one thread.
     #[must_use]
     pub fn new(pattern: KktPattern, ordering: Ordering) -> Self {
-        let symbolic = Symbolic::analyse(&pattern, ordering);
+        Self::with_parallelism(pattern, ordering, Parallelism::One)
+    }
+
+    /// Analyses `pattern` for the threads `parallelism` chooses at its order: one thread in
+    /// `ordering` ([`Symbolic::analyse`]), or two in the split order
+    /// ([`Symbolic::analyse_split`], its halves in `ordering`).
+    #[must_use]
+    pub fn with_parallelism(
+        pattern: KktPattern,
+        ordering: Ordering,
+        parallelism: Parallelism,
+    ) -> Self {
+        let threads = parallelism.threads(pattern.order());
+        let symbolic = if cfg!(feature = "std") && threads == 2 {
+            Symbolic::analyse_split(&pattern, ordering)
+        } else {
+            Symbolic::analyse(&pattern, ordering)
+        };
+        let mut factor = Ldlt::new(&symbolic);
+        factor.set_threads(threads);
         let n = pattern.order();
         let quasi_definite = ordering == Ordering::AmdQuasiDefinite;
-        let mut factor = Ldlt::new(&symbolic);
         if quasi_definite {
             factor.set_dual_shift(T::from_f64(QUASI_DEFINITE_SHIFT));
         }
@@ -94,6 +114,12 @@ impl<T: Real> Kkt<T> {
             factorizations: 0,
             krylov: quasi_definite.then(|| Gmres::new(n, QUASI_DEFINITE_RESTART)),
         }
+    }
+
+    /// Threads of the next factorizations (see [`Ldlt::set_threads`]): 2 only on a split
+    /// analysis with `std`. Returns the threads it will use.
+    pub fn set_threads(&mut self, threads: usize) -> usize {
+        self.factor.set_threads(threads)
     }
 
     /// Numeric factorizations since this system was made (inertia-correction retries

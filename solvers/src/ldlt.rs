@@ -20,14 +20,30 @@
 //! quasi-definite $K - \delta_d \thinspace\mathrm{diag}(0, \Sigma)$ (Vanderbei 1995; as QDLDL
 //! in OSQP), stable in any elimination order, which a Krylov refinement against $K$
 //! corrects ([`crate::gmres`]). Structurally zero pivots then take $-\delta_d \sigma_k$.
+//!
+//! On a split analysis ([`Symbolic::analyse_split`]: half $A$, half $B$, separator $S$, no
+//! entry of $L$ joining $A$ and $B$) the work divides in two. Each half computes its own
+//! rows, then its part of every separator row $k$: the triangular solve over its own
+//! columns, which leaves partial sums $y^A_i$, $y^B_i$ ($i \in S$, $i < k$) and partial
+//! diagonals; half $A$ starts from column $k$'s entries in $A$ and $S$ and $a_{kk}$, half $B$
+//! from its entries in $B$ and zero. The halves share nothing but read-only input, so they
+//! run on two threads ([`Ldlt::set_threads`]). Row $k$ then continues from
+//! $y_i = y^A_i + y^B_i$ over the separator's columns, on one thread. This adds the halves'
+//! contributions in another order than the row-by-row factor of the same order would (the
+//! rounding differs in the last bits), and the same on one thread as on two: the split
+//! factor is bit for bit the same whatever the threads. Without the `std` feature a split
+//! analysis is factorized row by row like any other.
 
 use alloc::vec;
 use alloc::vec::Vec;
+use core::ops::Range;
 use folio_kernels::Real;
 use folio_kernels::fused::mul_sub;
 
 use crate::error::SolverError;
 use crate::index::Index;
+use crate::nested_dissection::Split;
+use crate::pattern::NONE;
 use crate::symbolic::{Arrays, Structure, Symbolic};
 
 /// Outcome of one numeric factorization.
@@ -55,6 +71,11 @@ pub enum FactorOutcome {
 /// work vector ($n$), and the row-pattern workspace: the next free position of each column
 /// and the current row's columns ($n$ 32-bit indices each) and a visited bit per column. All
 /// of it is allocated by [`Ldlt::new`] at setup; factorizing and solving allocate nothing.
+/// For a split analysis ([`Symbolic::analyse_split`]) it also owns a second work vector,
+/// row list and bit set for half $B$ ($n$ each), the halves' partial separator rows
+/// ($m(m + 1)$ values for a separator of $m$ unknowns) and each half column's first
+/// separator ancestor (one 32-bit index per half column). A two-thread factorization
+/// ([`Ldlt::set_threads`]) spawns a scoped thread, which allocates its stack and handle.
 /// It remembers the analysis it was made for (its order and [`Symbolic::fingerprint`]) and
 /// its entry points refuse any other with [`SolverError::SymbolicMismatch`].
 #[derive(Clone, Debug)]
@@ -76,6 +97,38 @@ pub struct Ldlt<T> {
     /// Static shift $\delta_d$ of the constraint pivots, relative to their scale (module
     /// docs); 0 for none.
     dual_shift: T,
+    /// Half $B$'s work vector, row list and bit set (each as the above; empty unless the
+    /// analysis is split).
+    second: Workspace<T>,
+    /// The halves' partial separator rows, $m(m + 1)/2$ each for a separator of $m$
+    /// ([`Part::factor_half`]).
+    stash: Vec<T>,
+    /// The first separator ancestor of each column of the halves (`split.b` entries).
+    top: Vec<u32>,
+    /// Threads of a factorization: 1, or 2 on a split analysis with `std`.
+    threads: usize,
+}
+
+/// The per-thread work vectors of the up-looking factor ([`Ldlt`]).
+#[derive(Clone, Debug, Default)]
+struct Workspace<T> {
+    /// Dense work vector ($n$), zero between rows.
+    y: Vec<T>,
+    /// The current row's nonzero columns ($n$).
+    reach: Vec<u32>,
+    /// Visited bit per column ($n$ bits), zero between rows.
+    seen: Vec<usize>,
+}
+
+impl<T: Real> Workspace<T> {
+    /// Zeroed buffers for order `n`.
+    fn new(n: usize) -> Self {
+        Self {
+            y: vec![T::ZERO; n],
+            reach: vec![0; n],
+            seen: vec![0; n.div_ceil(BITS)],
+        }
+    }
 }
 
 impl<T: Real> Ldlt<T> {
@@ -92,6 +145,19 @@ impl<T: Real> Ldlt<T> {
             seen: vec![0; n.div_ceil(BITS)],
             fingerprint: symbolic.fingerprint,
             dual_shift: T::ZERO,
+            second: if symbolic.split.is_some() {
+                Workspace::new(n)
+            } else {
+                Workspace::default()
+            },
+            stash: symbolic.split.map_or(Vec::new(), |split| {
+                let m = n - split.b;
+                vec![T::ZERO; m * (m + 1)]
+            }),
+            top: symbolic.split.map_or(Vec::new(), |split| {
+                separator_ancestors(&symbolic.parent, split.b)
+            }),
+            threads: 1,
         }
     }
 
@@ -100,6 +166,25 @@ impl<T: Real> Ldlt<T> {
     /// default) switches it off.
     pub fn set_dual_shift(&mut self, shift: T) {
         self.dual_shift = shift;
+    }
+
+    /// Threads of the next factorizations: 2 splits the work of a split analysis
+    /// ([`Symbolic::analyse_split`]) between this thread and a scoped second one, which
+    /// compute the two halves concurrently before this thread finishes the separator's
+    /// rows (module docs). The result is bit for bit that of one thread: each half runs
+    /// the same operations in the same order either way. Without a split, or without the
+    /// `std` feature, the factor stays on one thread. Returns the threads it will use.
+    pub fn set_threads(&mut self, threads: usize) -> usize {
+        let two = cfg!(feature = "std") && threads >= 2 && !self.second.y.is_empty();
+        self.threads = if two { 2 } else { 1 };
+        self.threads
+    }
+
+    /// Threads of a factorization ([`Ldlt::set_threads`]).
+    #[inline]
+    #[must_use]
+    pub fn threads(&self) -> usize {
+        self.threads
     }
 
     /// Strictly lower values of $L$, [`Symbolic::nnz_l`] entries in the symbolic's layout:
@@ -173,28 +258,163 @@ impl<T: Real> Ldlt<T> {
             scaling,
             perm: &symbolic.perm,
         };
+        let job = Job {
+            symbolic,
+            values,
+            scale,
+            limits,
+            dual_shift: self.dual_shift,
+        };
+        self.fill.copy_from_slice(&symbolic.l_ptr[..symbolic.n]);
         match &symbolic.structure {
-            Structure::Narrow(a) => self.factor_rows(symbolic, a, values, scale, limits),
-            Structure::Wide(a) => self.factor_rows(symbolic, a, values, scale, limits),
+            Structure::Narrow(a) => self.factor_parts(job, a),
+            Structure::Wide(a) => self.factor_parts(job, a),
         }
     }
 
-    /// The up-looking factorization (module docs) on `arrays`, `symbolic`'s index arrays.
+    /// The up-looking factorization of every row: in one pass, or on a split analysis the
+    /// halves (on one thread or two), then the separator's rows.
+    fn factor_parts<I: Index + Sync>(
+        &mut self,
+        job: Job<'_, T>,
+        arrays: &Arrays<I>,
+    ) -> FactorOutcome {
+        let n = job.symbolic.n;
+        // Without `std` a split analysis is factorized row by row like any other (the
+        // microcontroller's flash does not carry the split factor).
+        let split = job.symbolic.split.filter(|_| cfg!(feature = "std"));
+        let Some(split) = split else {
+            return self.whole().0.factor(job, arrays, 0..n);
+        };
+        let halves = self.factor_halves(job, arrays, split);
+        if let FactorOutcome::NonFinite { .. } = halves {
+            return halves;
+        }
+        let (rows, stash, top) = self.whole();
+        let halves_rows = stash.split_at(stash.len() / 2);
+        rows.factor_separator(job, arrays, split.b, halves_rows, top)
+            .after(halves)
+    }
+
+    /// Half $A$'s work (its rows, then its part of the separator's rows) and half $B$'s,
+    /// on this thread and, with two threads, a scoped second one: half $B$ reads and
+    /// writes only its own columns ([`crate::nested_dissection`]).
+    fn factor_halves<I: Index + Sync>(
+        &mut self,
+        job: Job<'_, T>,
+        arrays: &Arrays<I>,
+        split: Split,
+    ) -> FactorOutcome {
+        let (a, b) = (split.a, split.b);
+        let l_a = job.symbolic.l_ptr[a] as usize;
+        let l_b = job.symbolic.l_ptr[b] as usize;
+        let (l_first, l_second) = self.l[..l_b].split_at_mut(l_a);
+        let (d_first, d_second) = self.d[..b].split_at_mut(a);
+        let (fill_first, fill_second) = self.fill[..b].split_at_mut(a);
+        let half = self.stash.len() / 2;
+        let (stash_first, stash_second) = self.stash.split_at_mut(half);
+        let columns = Columns::new(l_first, d_first, fill_first, (0, 0));
+        let half_a = Part::new(&mut self.work, &mut self.reach, &mut self.seen, columns);
+        let w = &mut self.second;
+        let columns = Columns::new(l_second, d_second, fill_second, (a, l_a));
+        let half_b = Part::new(&mut w.y, &mut w.reach, &mut w.seen, columns);
+        let run_b = move || half_b.factor_half(job, arrays, a..b, b, stash_second);
+        #[cfg(feature = "std")]
+        if self.threads == 2 {
+            return std::thread::scope(|scope| {
+                let second = scope.spawn(run_b);
+                let first = half_a.factor_half(job, arrays, 0..a, b, stash_first);
+                match second.join() {
+                    Ok(second) => second.after(first),
+                    Err(panic) => std::panic::resume_unwind(panic),
+                }
+            });
+        }
+        let first = half_a.factor_half(job, arrays, 0..a, b, stash_first);
+        if let FactorOutcome::NonFinite { .. } = first {
+            return first;
+        }
+        run_b().after(first)
+    }
+
+    /// This factor's buffers as one [`Part`], every column, with the halves' partial
+    /// separator rows and the first separator ancestors.
+    fn whole(&mut self) -> (Part<'_, T>, &[T], &[u32]) {
+        let columns = Columns::new(&mut self.l, &mut self.d, &mut self.fill, (0, 0));
+        let part = Part::new(&mut self.work, &mut self.reach, &mut self.seen, columns);
+        (part, &self.stash, &self.top)
+    }
+}
+
+/// One factorization's read-only inputs ([`Ldlt::factor_paired`]).
+#[derive(Clone, Copy)]
+struct Job<'a, T> {
+    symbolic: &'a Symbolic,
+    values: Values<'a, T>,
+    scale: &'a [T],
+    limits: (T, T),
+    /// [`Ldlt::set_dual_shift`]'s $\delta_d$.
+    dual_shift: T,
+}
+
+/// The buffers one thread of the up-looking factor writes: the work vector, row list and
+/// bit set ($n$ each), and its columns.
+struct Part<'a, T> {
+    y: &'a mut [T],
+    reach: &'a mut [u32],
+    seen: &'a mut [usize],
+    columns: Columns<'a, T>,
+}
+
+/// Columns `first..` of $D$ and of the next free positions, with their values of $L$ from
+/// position `l_first` on.
+struct Columns<'a, T> {
+    l: &'a mut [T],
+    d: &'a mut [T],
+    fill: &'a mut [u32],
+    first: usize,
+    l_first: usize,
+}
+
+impl<'a, T: Real> Part<'a, T> {
+    /// A part of the work vector `y`, row list `reach` and bit set `seen`, on `columns`.
+    fn new(
+        y: &'a mut [T],
+        reach: &'a mut [u32],
+        seen: &'a mut [usize],
+        columns: Columns<'a, T>,
+    ) -> Self {
+        Self {
+            y,
+            reach,
+            seen,
+            columns,
+        }
+    }
+
+    /// The up-looking factorization (module docs) of rows `rows`, whose columns all lie in
+    /// this part's range.
+    fn factor<I: Index>(
+        mut self,
+        job: Job<'_, T>,
+        arrays: &Arrays<I>,
+        rows: Range<usize>,
+    ) -> FactorOutcome {
+        self.factor_rows(job, arrays, rows)
+    }
+
+    /// [`Part::factor`] of rows `rows`, borrowing the part.
     fn factor_rows<I: Index>(
         &mut self,
-        symbolic: &Symbolic,
+        job: Job<'_, T>,
         arrays: &Arrays<I>,
-        values: Values<'_, T>,
-        scale: &[T],
-        (epsilon, delta): (T, T),
+        rows: Range<usize>,
     ) -> FactorOutcome {
-        let s = symbolic;
-        let (a_row, a_slot, l_row) = (&arrays.a_row, &arrays.a_slot, &arrays.l_row);
-        let (y, l, d) = (&mut self.work[..], &mut self.l[..], &mut self.d[..]);
-        let (fill, reach, seen) = (&mut self.fill[..], &mut self.reach[..], &mut self.seen[..]);
-        fill.copy_from_slice(&s.l_ptr[..s.n]);
-        let (mut regularized, mut regularized_primal) = (0, 0);
-        for (k, &pivot_scale) in scale.iter().enumerate().take(s.n) {
+        let (s, values) = (job.symbolic, job.values);
+        let (a_row, a_slot) = (&arrays.a_row, &arrays.a_slot);
+        let (y, reach, seen) = (&mut *self.y, &mut *self.reach, &mut *self.seen);
+        let mut pivots = Pivots::default();
+        for k in rows {
             let mut diagonal = T::ZERO;
             let (mut count, mut low) = (0, k);
             for e in s.a_ptr[k] as usize..s.a_ptr[k + 1] as usize {
@@ -206,57 +426,290 @@ impl<T: Real> Ldlt<T> {
                 }
                 y[i] += v;
                 low = low.min(i);
-                // Up the elimination tree to the first visited column, or to k.
-                let mut j = i;
-                while j < k && seen[j / BITS] & (1 << (j % BITS)) == 0 {
-                    seen[j / BITS] |= 1 << (j % BITS);
-                    reach[count] = j as u32;
-                    count += 1;
-                    j = s.parent[j] as usize;
+                count = walk(reach, seen, &s.parent, (i, k), count);
+            }
+            let row = ascending(&mut reach[..count], seen, low, k);
+            let diagonal = self.columns.eliminate(y, s, &arrays.l_row, row, diagonal);
+            if let Err(outcome) =
+                pivots.set(self.columns.d, k - self.columns.first, job, k, diagonal)
+            {
+                clear(y, seen);
+                return outcome;
+            }
+        }
+        pivots.outcome()
+    }
+
+    /// This half's rows `columns`, then its part of every separator row $k \ge b$: the
+    /// entries of column $k$ in its columns (and, for half $A$, those in the separator and
+    /// the diagonal) less the updates of its columns, stored to `stash` (rows $b..k$ and
+    /// the diagonal, $(k - b)(k - b + 1)/2$ on) for [`Part::factor_separator`].
+    fn factor_half<I: Index>(
+        mut self,
+        job: Job<'_, T>,
+        arrays: &Arrays<I>,
+        columns: Range<usize>,
+        b: usize,
+        stash: &mut [T],
+    ) -> FactorOutcome {
+        let own = self.factor_rows(job, arrays, columns.clone());
+        if let FactorOutcome::NonFinite { .. } = own {
+            return own;
+        }
+        let (s, values) = (job.symbolic, job.values);
+        let (a_row, a_slot) = (&arrays.a_row, &arrays.a_slot);
+        let (y, reach, seen) = (&mut *self.y, &mut *self.reach, &mut *self.seen);
+        let (first, end) = (columns.start == 0, columns.end);
+        for k in b..s.n {
+            let mut diagonal = T::ZERO;
+            let (mut count, mut low) = (0, end);
+            for e in s.a_ptr[k] as usize..s.a_ptr[k + 1] as usize {
+                let i = a_row[e].get();
+                let inside = columns.contains(&i);
+                if !(inside || first && i >= b) {
+                    continue;
+                }
+                let v = values.get(a_slot[e].get(), i, k);
+                if i == k {
+                    diagonal += v;
+                    continue;
+                }
+                y[i] += v;
+                if inside {
+                    low = low.min(i);
+                    count = walk(reach, seen, &s.parent, (i, end), count);
+                }
+            }
+            let row = ascending(&mut reach[..count], seen, low, end);
+            let diagonal = self.columns.eliminate(y, s, &arrays.l_row, row, diagonal);
+            let at = (k - b) * (k - b + 1) / 2;
+            let (partial, rest) = stash[at..=at + k - b].split_at_mut(k - b);
+            partial.copy_from_slice(&y[b..k]);
+            y[b..k].iter_mut().for_each(|v| *v = T::ZERO);
+            rest[0] = diagonal;
+        }
+        own
+    }
+
+    /// The separator's rows $b..n$ after both halves ([`Part::factor_half`]): row $k$
+    /// starts from the sum of the halves' partial rows and diagonals, then eliminates its
+    /// separator columns, reached from each entry's first separator ancestor (`top`, for
+    /// entries below $b$) up the elimination tree.
+    fn factor_separator<I: Index>(
+        self,
+        job: Job<'_, T>,
+        arrays: &Arrays<I>,
+        b: usize,
+        (first, second): (&[T], &[T]),
+        top: &[u32],
+    ) -> FactorOutcome {
+        let s = job.symbolic;
+        let Self {
+            y,
+            reach,
+            seen,
+            mut columns,
+        } = self;
+        let mut pivots = Pivots::default();
+        for k in b..s.n {
+            let at = (k - b) * (k - b + 1) / 2;
+            let m = k - b;
+            for ((v, &p), &q) in y[b..k]
+                .iter_mut()
+                .zip(&first[at..at + m])
+                .zip(&second[at..at + m])
+            {
+                *v = p + q;
+            }
+            let diagonal = first[at + m] + second[at + m];
+            let (mut count, mut low) = (0, k);
+            for &i in &arrays.a_row[s.a_ptr[k] as usize..s.a_ptr[k + 1] as usize] {
+                let i = i.get();
+                let j = if i < b { top[i] as usize } else { i };
+                if j < k {
+                    low = low.min(j);
+                    count = walk(reach, seen, &s.parent, (j, k), count);
                 }
             }
             let row = ascending(&mut reach[..count], seen, low, k);
-            // Row k's columns j, ascending: L_kj = y_j / d_j, and y -= L_{:j} y_j.
-            for &j in row.iter() {
-                let j = j as usize;
-                let pos = fill[j] as usize;
-                fill[j] += 1;
-                let yj = y[j];
-                y[j] = T::ZERO;
-                let start = s.l_ptr[j] as usize;
-                for (&r, &lr) in l_row[start..pos].iter().zip(&l[start..pos]) {
-                    y[r.get()] = mul_sub(y[r.get()], lr, yj);
-                }
-                let lkj = yj / d[j];
-                diagonal = mul_sub(diagonal, lkj, yj);
-                l[pos] = lkj;
+            let diagonal = columns.eliminate(y, s, &arrays.l_row, row, diagonal);
+            if let Err(outcome) = pivots.set(columns.d, k, job, k, diagonal) {
+                clear(y, seen);
+                return outcome;
             }
-            if !diagonal.is_finite() {
-                // Leave the work vectors clean for the next call.
-                y.iter_mut().for_each(|v| *v = T::ZERO);
-                seen.iter_mut().for_each(|w| *w = 0);
-                return FactorOutcome::NonFinite { pivot: k };
-            }
-            let sign = if s.signs[k] > 0 { T::ONE } else { -T::ONE };
-            let shifted = s.signs[k] < 0 && self.dual_shift > T::ZERO;
-            if shifted {
-                diagonal -= self.dual_shift * pivot_scale;
-            }
-            if s.structural_zero[k] && !shifted {
-                diagonal = sign * delta * pivot_scale;
-            } else if sign * diagonal <= epsilon * pivot_scale {
-                diagonal = sign * delta * pivot_scale;
-                regularized += 1;
-                regularized_primal += usize::from(s.signs[k] > 0);
-            }
-            d[k] = diagonal;
         }
-        FactorOutcome::Factored {
-            regularized,
-            regularized_primal,
+        pivots.outcome()
+    }
+}
+
+impl<'a, T: Real> Columns<'a, T> {
+    /// Columns `first..` of `d` and `fill`, their values of $L$ in `l` from position
+    /// `l_first` on.
+    fn new(
+        l: &'a mut [T],
+        d: &'a mut [T],
+        fill: &'a mut [u32],
+        (first, l_first): (usize, usize),
+    ) -> Self {
+        Self {
+            l,
+            d,
+            fill,
+            first,
+            l_first,
         }
     }
 
+    /// Row $k$'s columns `row`, ascending: $L_{kj} = y_j / d_j$ goes to column $j$'s next
+    /// free position, $y \mathrel{-}= L_{:j}\thinspace y_j$ over the column's earlier rows,
+    /// and the returned diagonal is `diagonal` $- \sum_j L_{kj} y_j$. Leaves $y_j = 0$.
+    #[inline]
+    fn eliminate<I: Index>(
+        &mut self,
+        y: &mut [T],
+        s: &Symbolic,
+        l_row: &[I],
+        row: &[u32],
+        mut diagonal: T,
+    ) -> T {
+        let (l, d, fill) = (&mut *self.l, &*self.d, &mut *self.fill);
+        let (first, l_first) = (self.first, self.l_first);
+        // Row k's columns j, ascending: L_kj = y_j / d_j, and y -= L_{:j} y_j.
+        for &j in row {
+            let j = j as usize;
+            let pos = fill[j - first] as usize;
+            fill[j - first] += 1;
+            let yj = y[j];
+            y[j] = T::ZERO;
+            let start = s.l_ptr[j] as usize;
+            let values = &l[start - l_first..pos - l_first];
+            for (&r, &lr) in l_row[start..pos].iter().zip(values) {
+                y[r.get()] = mul_sub(y[r.get()], lr, yj);
+            }
+            let lkj = yj / d[j - first];
+            diagonal = mul_sub(diagonal, lkj, yj);
+            l[pos - l_first] = lkj;
+        }
+        diagonal
+    }
+}
+
+/// Up the elimination tree (`parent`) from column `j` to the first visited column or to
+/// `limit`, marking each in `seen` and appending it to `reach` after `count` entries;
+/// returns the new count.
+#[inline]
+fn walk(
+    reach: &mut [u32],
+    seen: &mut [usize],
+    parent: &[u32],
+    (mut j, limit): (usize, usize),
+    mut count: usize,
+) -> usize {
+    while j < limit && seen[j / BITS] & (1 << (j % BITS)) == 0 {
+        seen[j / BITS] |= 1 << (j % BITS);
+        reach[count] = j as u32;
+        count += 1;
+        j = parent[j] as usize;
+    }
+    count
+}
+
+/// The first ancestor at or after `b` of each column below `b` in the elimination tree
+/// `parent` ([`NONE`] for a root below `b`).
+fn separator_ancestors(parent: &[u32], b: usize) -> Vec<u32> {
+    let mut top = vec![NONE; b];
+    for j in (0..b).rev() {
+        let p = parent[j];
+        top[j] = if p == NONE || p as usize >= b {
+            p
+        } else {
+            top[p as usize]
+        };
+    }
+    top
+}
+
+/// Zeroes the work vector and the visited bits (after a non-finite pivot, for the next
+/// call).
+fn clear<T: Real>(y: &mut [T], seen: &mut [usize]) {
+    y.iter_mut().for_each(|v| *v = T::ZERO);
+    seen.iter_mut().for_each(|w| *w = 0);
+}
+
+/// The regularized pivots of a factorization so far.
+#[derive(Default)]
+struct Pivots {
+    regularized: usize,
+    regularized_primal: usize,
+}
+
+impl Pivots {
+    /// Stores pivot $k$, `diagonal` after the module docs' sign test and regularization,
+    /// at `d[at]`; `Err` with the outcome when it is not finite (nothing stored).
+    #[inline]
+    fn set<T: Real>(
+        &mut self,
+        d: &mut [T],
+        at: usize,
+        job: Job<'_, T>,
+        k: usize,
+        mut diagonal: T,
+    ) -> Result<(), FactorOutcome> {
+        let (s, (epsilon, delta)) = (job.symbolic, job.limits);
+        if !diagonal.is_finite() {
+            return Err(FactorOutcome::NonFinite { pivot: k });
+        }
+        let pivot_scale = job.scale[k];
+        let sign = if s.signs[k] > 0 { T::ONE } else { -T::ONE };
+        let shifted = s.signs[k] < 0 && job.dual_shift > T::ZERO;
+        if shifted {
+            diagonal -= job.dual_shift * pivot_scale;
+        }
+        if s.structural_zero[k] && !shifted {
+            diagonal = sign * delta * pivot_scale;
+        } else if sign * diagonal <= epsilon * pivot_scale {
+            diagonal = sign * delta * pivot_scale;
+            self.regularized += 1;
+            self.regularized_primal += usize::from(s.signs[k] > 0);
+        }
+        d[at] = diagonal;
+        Ok(())
+    }
+
+    /// The outcome of a factorization that ended here.
+    fn outcome(self) -> FactorOutcome {
+        FactorOutcome::Factored {
+            regularized: self.regularized,
+            regularized_primal: self.regularized_primal,
+        }
+    }
+}
+
+impl FactorOutcome {
+    /// The outcome of a factorization whose earlier rows ended in `earlier`: the first
+    /// non-finite pivot, or the regularized pivots of both.
+    fn after(self, earlier: Self) -> Self {
+        match (earlier, self) {
+            (Self::NonFinite { .. }, _) => earlier,
+            (
+                Self::Factored {
+                    regularized: r0,
+                    regularized_primal: p0,
+                },
+                Self::Factored {
+                    regularized,
+                    regularized_primal,
+                },
+            ) => Self::Factored {
+                regularized: r0 + regularized,
+                regularized_primal: p0 + regularized_primal,
+            },
+            (_, Self::NonFinite { .. }) => self,
+        }
+    }
+}
+
+impl<T: Real> Ldlt<T> {
     /// Solves $L D L^\top z = b$ in place in the new order (`x` holds $P b$ on entry, $n$
     /// entries).
     ///
@@ -432,8 +885,10 @@ mod tests {
     use super::{BITS, FactorOutcome, Ldlt, ascending, heapsort};
     use crate::chain::{Chain, dense, kkt_values};
     use crate::error::SolverError;
+    use crate::kkt::Kkt;
     use crate::ordering::Ordering;
     use crate::pattern::KktPattern;
+    use crate::settings::Parallelism;
     use crate::symbolic::{IndexWidth, Structure, Symbolic};
 
     /// A pattern from its upper columns (no term maps).
@@ -589,6 +1044,64 @@ mod tests {
             results.push((bits(ldlt.l()), bits(ldlt.d()), bits(&z)));
         }
         assert_eq!(results[0], results[1]);
+    }
+
+    /// On a split analysis the factor on two threads is bit for bit the factor on one (and
+    /// so are the refined solves), and the refined solution matches a dense Gaussian
+    /// elimination with partial pivoting of the same system.
+    #[test]
+    fn two_threads_match_one_and_a_dense_solve() {
+        let pattern = Chain::new(40).pattern(true);
+        let values = kkt_values(&pattern);
+        let n = pattern.order();
+        let b: Vec<f64> = (0..n).map(|i| 1.0 + (i % 7) as f64).collect();
+        let want = gauss(dense(&pattern, &values), b.clone());
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        for ordering in [Ordering::Amd, Ordering::AmdDelayedDuals] {
+            let mut kkt = Kkt::with_parallelism(pattern.clone(), ordering, Parallelism::Two);
+            assert!(kkt.symbolic().split().is_some());
+            kkt.values_mut().copy_from_slice(&values);
+            let mut results = Vec::new();
+            for threads in [1, 2] {
+                assert_eq!(kkt.set_threads(threads), threads);
+                let outcome = kkt.factorize(1e-12, 1e-8);
+                assert!(matches!(outcome, FactorOutcome::Factored { .. }));
+                let mut z = vec![0.0; n];
+                let refinement = kkt.solve_refined(&mut z, &b, 10, 1e-14);
+                assert!(refinement.relative_residual <= 1e-14, "{ordering:?}");
+                for (zi, wi) in z.iter().zip(&want) {
+                    assert!((zi - wi).abs() <= 1e-12 * (1.0 + wi.abs()), "{ordering:?}");
+                }
+                let factor = kkt.factor();
+                results.push((bits(factor.l()), bits(factor.d()), bits(&z)));
+            }
+            assert_eq!(results[0], results[1], "{ordering:?}");
+        }
+    }
+
+    /// $A^{-1} b$ by Gaussian elimination with partial pivoting (dense, row-major).
+    fn gauss(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
+        let n = b.len();
+        for c in 0..n {
+            let p = (c..n)
+                .max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))
+                .unwrap();
+            a.swap(c, p);
+            b.swap(c, p);
+            for r in c + 1..n {
+                let f = a[r][c] / a[c][c];
+                let (pivot, below) = a.split_at_mut(r);
+                for (x, &y) in below[0][c..].iter_mut().zip(&pivot[c][c..]) {
+                    *x -= f * y;
+                }
+                b[r] -= f * b[c];
+            }
+        }
+        for c in (0..n).rev() {
+            let sum: f64 = (c + 1..n).map(|k| a[c][k] * b[k]).sum();
+            b[c] = (b[c] - sum) / a[c][c];
+        }
+        b
     }
 
     /// A row's visited columns come out ascending with their bits cleared, whether read

@@ -10,6 +10,8 @@
 //!   rebuilt only when the model's topology version changes.
 //! - [`ldlt`], [`kkt`]: the numeric $LDL^\top$ with sign-aware regularization on the reused
 //!   analysis, and the refined solve.
+//! - [`nested_dissection`]: the split order of a two-thread factorization
+//!   ([`Parallelism`]).
 //! - [`normal_equations`]: $J W^{-1} J^\top$, the constraint projection's reduced system.
 //! - [`step`]: [`Solver::step`], one time step with a [`StepReport`].
 //! - [`matrix_market`]: export of the assembled KKT matrix.
@@ -37,6 +39,7 @@ pub mod kkt;
 pub mod ldlt;
 pub mod matrix_market;
 pub mod model;
+pub mod nested_dissection;
 pub mod normal_equations;
 pub mod ordering;
 pub mod pattern;
@@ -52,5 +55,5 @@ pub use model::{ConstraintSet, Model, PotentialSet, Term, TermVisitor};
 pub use ordering::Ordering;
 pub use report::{StepReport, StepStatus};
 pub use ring::Ring;
-pub use settings::Settings;
+pub use settings::{Parallelism, Settings};
 pub use step::{Correction, Solver, State};

@@ -89,6 +89,60 @@ pub struct Settings<T: Real> {
     /// Evaluate the eq. 3 residual after the last iteration (one gradient and Jacobian
     /// evaluation, no factorization) so the status can say `Converged`. Default on.
     pub check_final_residual: bool,
+    /// Threads of the KKT factorization ([`Parallelism`]). Default [`Parallelism::Auto`]:
+    /// one thread below [`Parallelism::AUTO_MIN_ORDER`] unknowns (the book's pages), two
+    /// above, with `std`.
+    pub parallelism: Parallelism,
+}
+
+/// Threads of the KKT factorization. Two threads need the `std` feature; without it every
+/// choice is one thread.
+///
+/// On two threads the symbolic analysis orders the KKT by a one-level nested dissection
+/// ([`crate::nested_dissection`], each half ordered by [`Settings::ordering`]), and the two
+/// halves of the factor are computed concurrently, then the separator
+/// ([`crate::ldlt::Ldlt::set_threads`]). That order and the split factor's summation
+/// differ from the one-thread factor, so results differ in the last bits; the split factor
+/// itself is bit for bit the same on one thread and on two. Each two-thread factorization
+/// spawns a scoped thread, which allocates its stack and handle: a step on two threads
+/// allocates once per factorization (one thread allocates nothing).
+///
+/// [`Parallelism::Auto`] takes two threads from [`Parallelism::AUTO_MIN_ORDER`] unknowns:
+/// below it the split order's extra fill and the thread's start cost more than the second
+/// core saves (measured with `cargo run --release -p folio-bench --example kkt_threads`, see
+/// `bench/README.md`). The book's 11x8 page (677 unknowns) stays on one thread.
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Parallelism {
+    /// One thread, in the order of [`Settings::ordering`].
+    One,
+    /// Two threads, in the split order (with `std`; one thread without).
+    Two,
+    /// Two threads from [`Parallelism::AUTO_MIN_ORDER`] unknowns on, one below.
+    #[default]
+    Auto,
+}
+
+impl Parallelism {
+    /// KKT order from which [`Parallelism::Auto`] takes two threads.
+    pub const AUTO_MIN_ORDER: usize = 1500;
+
+    /// Threads for a KKT of `order` unknowns: 1 or 2 (always 1 without `std`).
+    #[inline]
+    #[must_use]
+    pub fn threads(self, order: usize) -> usize {
+        let two = match self {
+            Self::One => false,
+            Self::Two => true,
+            Self::Auto => order >= Self::AUTO_MIN_ORDER,
+        };
+        if two && cfg!(feature = "std") { 2 } else { 1 }
+    }
 }
 
 impl<T: Real> Default for Settings<T> {
@@ -120,6 +174,7 @@ impl<T: Real> Default for Settings<T> {
                 sqrt_eps * folio_kernels::math::sqrt(sqrt_eps)
             },
             check_final_residual: true,
+            parallelism: Parallelism::Auto,
         }
     }
 }

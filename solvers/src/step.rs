@@ -30,7 +30,7 @@ use crate::normal_equations::NormalEquations;
 use crate::ordering::Ordering;
 use crate::pattern::KktPattern;
 use crate::report::{StepReport, StepStatus};
-use crate::settings::Settings;
+use crate::settings::{Parallelism, Settings};
 
 mod line_search;
 mod projection;
@@ -63,6 +63,8 @@ struct Workspace<T: Real> {
     ordering: Ordering,
     /// [`Settings::equilibrate`] as the KKT was set up.
     equilibrate: bool,
+    /// [`Settings::parallelism`] as the KKT was set up.
+    parallelism: Parallelism,
     kkt: Kkt<T>,
     /// Right-hand side, then product scratch, then solution: `dofs + rows` each.
     rhs: Vec<T>,
@@ -91,7 +93,7 @@ struct Workspace<T: Real> {
 
 impl<T: Real> Workspace<T> {
     /// The workspace of one topology (`version`, `nodes` nodes) with KKT pattern `pattern`,
-    /// analysed with `s`'s ordering and equilibration, with the normal equations when the
+    /// analysed with `s`'s ordering, parallelism and equilibration, with the normal equations when the
     /// solver `projects`. Generic in the value type only: one copy serves every model.
     fn new(
         pattern: KktPattern,
@@ -102,13 +104,14 @@ impl<T: Real> Workspace<T> {
     ) -> Self {
         let (dofs, rows) = (pattern.dofs, pattern.rows);
         let normal = projects.then(|| NormalEquations::new(&pattern));
-        let mut kkt = Kkt::new(pattern, s.ordering);
+        let mut kkt = Kkt::with_parallelism(pattern, s.ordering, s.parallelism);
         kkt.set_equilibration(s.equilibrate);
         let n = dofs + rows;
         Self {
             version,
             ordering: s.ordering,
             equilibrate: s.equilibrate,
+            parallelism: s.parallelism,
             kkt,
             rhs: vec![T::ZERO; n],
             product: vec![T::ZERO; n],
@@ -208,6 +211,7 @@ impl<T: Real> Solver<T> {
                 && w.ordering == s.ordering
                 && w.kkt.pattern.with_constraint_hessian == s.constraint_hessian
                 && w.equilibrate == s.equilibrate
+                && w.parallelism == s.parallelism
             {
                 return Ok(false);
             }

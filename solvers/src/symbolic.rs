@@ -11,6 +11,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::index::{Index, Indices};
+use crate::nested_dissection::{Split, split_candidates};
 use crate::ordering::{Ordering, permutation};
 use crate::pattern::{KktPattern, NONE};
 
@@ -48,6 +49,8 @@ pub struct Symbolic {
     pub(crate) structure: Structure,
     /// Hash of everything the numeric phase reads (see [`Symbolic::fingerprint`]).
     pub(crate) fingerprint: u64,
+    /// The two halves and the separator of a split order ([`Symbolic::analyse_split`]).
+    pub(crate) split: Option<Split>,
 }
 
 /// The index arrays of a [`Symbolic`] in one of the two widths.
@@ -75,8 +78,49 @@ impl Symbolic {
     /// Analyses `pattern` under `ordering`.
     #[must_use]
     pub fn analyse(pattern: &KktPattern, ordering: Ordering) -> Self {
+        Self::of_permutation(pattern, permutation(pattern, ordering))
+    }
+
+    /// Analyses `pattern` in a split order ([`crate::nested_dissection`]): two halves, each
+    /// ordered by `ordering` on its own, then the separator between them. Its factor can
+    /// run on two threads ([`crate::ldlt::Ldlt::set_threads`]); the parts are in
+    /// [`Symbolic::split`], and the fingerprint covers them. Of the candidate separators it
+    /// keeps the one with the least two-thread work: with $w_j = c_j (c_j + 1)/2$ for a
+    /// column of $c_j$ off-diagonal entries, $\max(\sum_A w_j, \sum_B w_j) + \sum_S w_j$
+    /// (each half's columns are eliminated by its thread, the separator's after both).
+    #[must_use]
+    pub fn analyse_split(pattern: &KktPattern, ordering: Ordering) -> Self {
+        let mut best: Option<(f64, Self, Split)> = None;
+        for (perm, split) in split_candidates(pattern, ordering) {
+            let symbolic = Self::of_permutation(pattern, perm);
+            let work = |columns: core::ops::Range<usize>| -> f64 {
+                columns
+                    .map(|j| {
+                        let c = f64::from(symbolic.l_ptr[j + 1] - symbolic.l_ptr[j]);
+                        c * (c + 1.0) / 2.0
+                    })
+                    .sum()
+            };
+            let cost = work(0..split.a).max(work(split.a..split.b)) + work(split.b..symbolic.n);
+            if best.as_ref().is_none_or(|(least, ..)| cost < *least) {
+                best = Some((cost, symbolic, split));
+            }
+        }
+        let Some((_, mut symbolic, split)) = best else {
+            return Self::analyse(pattern, ordering);
+        };
+        symbolic.fingerprint = Fingerprint(symbolic.fingerprint)
+            .word(split.a as u32)
+            .word(split.b as u32)
+            .finish();
+        symbolic.split = Some(split);
+        symbolic
+    }
+
+    /// The analysis of `pattern` in the order `perm` (`perm[new] = old`), in the narrowest
+    /// index width that holds it.
+    fn of_permutation(pattern: &KktPattern, perm: Vec<u32>) -> Self {
         let n = pattern.order();
-        let perm = permutation(pattern, ordering);
         let signs: Vec<i8> = (0..n).map(|k| signs_of(&perm, pattern.dofs, k)).collect();
         if n <= u16::MAX as usize + 1 && pattern.nnz() <= u16::MAX as usize + 1 {
             Self::build::<u16>(pattern, perm, signs, Structure::Narrow)
@@ -127,6 +171,7 @@ impl Symbolic {
                 l_row,
             }),
             fingerprint,
+            split: None,
         }
     }
 
@@ -217,6 +262,14 @@ impl Symbolic {
     #[must_use]
     pub fn fingerprint(&self) -> u64 {
         self.fingerprint
+    }
+
+    /// The two halves and the separator of an order made by [`Symbolic::analyse_split`]
+    /// (`None` for [`Symbolic::analyse`]).
+    #[inline]
+    #[must_use]
+    pub fn split(&self) -> Option<Split> {
+        self.split
     }
 
     /// Floating-point operations of one numeric factorization: for a column with $c_j$
