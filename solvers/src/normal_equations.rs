@@ -15,8 +15,9 @@
 //! Each solve factorizes $S$ and runs conjugate gradients preconditioned with the factor:
 //! one iteration solves up to the regularization of near-zero pivots and rounding, and the
 //! next ones refine. $S$'s factor has nnz(L) = 10,896 and 0.53 M flops on the book's page,
-//! against the KKT's 16,756 and 0.68 M in f64's AMD order and 49,875 and 4.1 M in f32's
-//! delayed-duals order, and the step's own KKT factor is left untouched.
+//! against the KKT's 16,756 and 0.68 M in AMD's order (f64's, and f32's quasi-definite
+//! one; 49,875 and 4.1 M in the delayed-duals order), and the step's own KKT factor is left
+//! untouched.
 //!
 //! A factor kept from an earlier $S$ (an earlier iteration or frame) was tried as the
 //! preconditioner first, refactorizing only when three iterations fell short. On the page

@@ -7,6 +7,7 @@
 //! relative for derivatives of ordinary size, absolute below $10^{-2}$ (so that exactly-zero
 //! blocks of linear terms do not divide rounding noise by zero).
 
+pub mod counting;
 pub mod models;
 pub mod terms;
 

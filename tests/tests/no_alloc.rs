@@ -2,53 +2,13 @@
 //! does not"), held by a counting global allocator: the solver on its test models, and the
 //! book over the recorded page turn (collisions with their broad phase, and the constraint
 //! projection with its normal equations, included).
-// A global allocator is an `unsafe impl`; this test binary is the only place that needs one.
-#![allow(unsafe_code)]
-
-use core::alloc::{GlobalAlloc, Layout};
-use core::cell::Cell;
-use std::alloc::System;
 
 use folio_book::{Book, BookSettings, Script};
 use folio_kernels::Real;
 use folio_solvers::{Model, Settings, Solver, State};
 use folio_tests::models::{Chain, DogSheet};
 
-struct Counting;
-
-thread_local! {
-    /// Allocations by this thread: the test harness's own threads (its progress messages,
-    /// for example "has been running for over 60 seconds" under a slow emulator) are not
-    /// the code under test.
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-/// Counts one allocation on the calling thread (none while the thread shuts down).
-fn count() {
-    let _ = ALLOCATIONS.try_with(|n| n.set(n.get() + 1));
-}
-
-/// Allocations by the calling thread so far.
-fn allocations() -> usize {
-    ALLOCATIONS.with(Cell::get)
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        count();
-        // SAFETY: forwarded unchanged to the system allocator.
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        // SAFETY: `ptr` came from `System.alloc` with this layout.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        count();
-        // SAFETY: as `realloc`'s contract, forwarded.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
+use folio_tests::counting::{Counting, allocations};
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;

@@ -2,54 +2,14 @@
 //! does not"), held by a counting global allocator: [`TearingSheet::step`] with the effect
 //! `tearing` off and `cones` on (physics step, cone-layer update, remesh) on a bent sheet whose
 //! fingers keep moving, after a few warm-up frames.
-// A global allocator is an `unsafe impl`; this test binary is the only place that needs one.
-#![allow(unsafe_code)]
 
-use core::alloc::{GlobalAlloc, Layout};
-use core::cell::Cell;
 use core::f64::consts::PI;
-use std::alloc::System;
-
 use folio_geometry::SheetMesh;
 use folio_geometry::sheet::Region;
 use folio_kernels::{Real, Vec3Ops};
 use folio_tearing::sheet::{SheetEffects, SheetSettings, TearingSheet};
 
-/// Counts the allocations of the thread that makes them: the test harness's own threads
-/// (measured: about one run in thirty sees a few allocations from them while a frame runs)
-/// must not count, and a frame runs on the calling thread.
-struct Counting;
-
-thread_local! {
-    /// Allocations (and reallocations) made by this thread.
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-fn count() {
-    // `try_with`: a thread being torn down has no counter any more and is not counted.
-    let _ = ALLOCATIONS.try_with(|n| n.set(n.get() + 1));
-}
-
-fn allocations() -> usize {
-    ALLOCATIONS.with(Cell::get)
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        count();
-        // SAFETY: forwarded unchanged to the system allocator.
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        // SAFETY: `ptr` came from `System.alloc` with this layout.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        count();
-        // SAFETY: as `realloc`'s contract, forwarded.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
+use folio_tests::counting::{Counting, allocations};
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
