@@ -574,6 +574,7 @@ impl<'a, T: Real> Columns<'a, T> {
     ) -> T {
         let (l, d, fill) = (&mut *self.l, &*self.d, &mut *self.fill);
         let (first, l_first) = (self.first, self.l_first);
+        assert!(y.len() >= s.n, "work vector shorter than the analysis");
         // Row k's columns j, ascending: L_kj = y_j / d_j, and y -= L_{:j} y_j.
         for &j in row {
             let j = j as usize;
@@ -584,7 +585,14 @@ impl<'a, T: Real> Columns<'a, T> {
             let start = s.l_ptr[j] as usize;
             let values = &l[start - l_first..pos - l_first];
             for (&r, &lr) in l_row[start..pos].iter().zip(values) {
-                y[r.get()] = mul_sub(y[r.get()], lr, yj);
+                let r = r.get();
+                debug_assert!(r < s.n);
+                // SAFETY: `l_row` holds row indices of L below n = `s.n` (built by
+                // `Symbolic::analyse` from a pattern of order n, never changed after), and
+                // `y.len() >= s.n` was asserted above.
+                #[allow(unsafe_code)]
+                let yr = unsafe { y.get_unchecked_mut(r) };
+                *yr = mul_sub(*yr, lr, yj);
             }
             let lkj = yj / d[j - first];
             diagonal = mul_sub(diagonal, lkj, yj);
@@ -734,11 +742,19 @@ impl<T: Real> Ldlt<T> {
     /// $x \leftarrow L^{-\top} D^{-1} L^{-1} x$ with $L$'s columns `l_ptr` / `l_row`.
     fn solve_rows<I: Index>(&self, l_ptr: &[u32], l_row: &[I], x: &mut [T]) {
         let n = l_ptr.len() - 1;
+        // Both loops index `x` by `l_row` unchecked (the factor's hot loops, ~10 % of a
+        // book step's instructions as bounds checks): `l_row` holds row indices of L below
+        // n, built by `Symbolic::analyse` from a pattern of order n and never changed after.
+        assert!(x.len() >= n, "right-hand side shorter than the analysis");
         for j in 0..n {
             let xj = x[j];
             let range = l_ptr[j] as usize..l_ptr[j + 1] as usize;
             for (&r, &l) in l_row[range.clone()].iter().zip(&self.l[range]) {
-                x[r.get()] = mul_sub(x[r.get()], l, xj);
+                debug_assert!(r.get() < n);
+                // SAFETY: r < n (above) and x.len() >= n (asserted).
+                #[allow(unsafe_code)]
+                let xr = unsafe { x.get_unchecked_mut(r.get()) };
+                *xr = mul_sub(*xr, l, xj);
             }
         }
         for (xj, &dj) in x.iter_mut().zip(&self.d) {
@@ -748,7 +764,11 @@ impl<T: Real> Ldlt<T> {
             let range = l_ptr[j] as usize..l_ptr[j + 1] as usize;
             let mut sum = x[j];
             for (&r, &l) in l_row[range.clone()].iter().zip(&self.l[range]) {
-                sum = mul_sub(sum, l, x[r.get()]);
+                debug_assert!(r.get() < n);
+                // SAFETY: r < n (above) and x.len() >= n (asserted).
+                #[allow(unsafe_code)]
+                let xr = unsafe { *x.get_unchecked(r.get()) };
+                sum = mul_sub(sum, l, xr);
             }
             x[j] = sum;
         }
