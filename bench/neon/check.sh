@@ -13,7 +13,7 @@ cd "$(dirname "$0")/../.."
 
 # name tail[=least vector fmla/fmls]
 hot=(
-  'Ldlt<T>::factor_paired'                    # the factor's column update (sparse scatter)
+  'Columns<T>::eliminate'                     # the factor's column update (sparse scatter)
   'Ldlt<T>::solve_paired'                     # triangular solves (scatter, then gather)
   'kkt::symmetric_product'                    # K z (refinement residuals, CG products)
   'NormalEquations<T>::assemble'              # J W^-1 J^T, column by column
