@@ -84,21 +84,17 @@ pub struct Ldlt<T> {
     l: Vec<T>,
     /// The pivots $D$.
     d: Vec<T>,
-    /// Dense work vector, zero between uses.
-    work: Vec<T>,
     /// Next free position of each column of $L$ during a factorization.
     fill: Vec<u32>,
-    /// The current row's nonzero columns.
-    reach: Vec<u32>,
-    /// One bit per column: visited by the current row's walk; zero between rows.
-    seen: Vec<usize>,
+    /// The work vector, row list and bit set of the factor (of half $A$ on a split
+    /// analysis).
+    first: Workspace<T>,
     /// [`Symbolic::fingerprint`] of the analysis this factor belongs to.
     fingerprint: u64,
     /// Static shift $\delta_d$ of the constraint pivots, relative to their scale (module
     /// docs); 0 for none.
     dual_shift: T,
-    /// Half $B$'s work vector, row list and bit set (each as the above; empty unless the
-    /// analysis is split).
+    /// Half $B$'s work vector, row list and bit set (empty unless the analysis is split).
     second: Workspace<T>,
     /// The halves' partial separator rows, $m(m + 1)/2$ each for a separator of $m$
     /// ([`Part::factor_half`]).
@@ -139,10 +135,8 @@ impl<T: Real> Ldlt<T> {
         Self {
             l: vec![T::ZERO; symbolic.nnz_l()],
             d: vec![T::ZERO; n],
-            work: vec![T::ZERO; n],
             fill: vec![0; n],
-            reach: vec![0; n],
-            seen: vec![0; n.div_ceil(BITS)],
+            first: Workspace::new(n),
             fingerprint: symbolic.fingerprint,
             dual_shift: T::ZERO,
             second: if symbolic.split.is_some() {
@@ -314,10 +308,9 @@ impl<T: Real> Ldlt<T> {
         let half = self.stash.len() / 2;
         let (stash_first, stash_second) = self.stash.split_at_mut(half);
         let columns = Columns::new(l_first, d_first, fill_first, (0, 0));
-        let half_a = Part::new(&mut self.work, &mut self.reach, &mut self.seen, columns);
-        let w = &mut self.second;
+        let half_a = Part::new(&mut self.first, columns);
         let columns = Columns::new(l_second, d_second, fill_second, (a, l_a));
-        let half_b = Part::new(&mut w.y, &mut w.reach, &mut w.seen, columns);
+        let half_b = Part::new(&mut self.second, columns);
         let run_b = move || half_b.factor_half(job, arrays, a..b, b, stash_second);
         #[cfg(feature = "std")]
         if self.threads == 2 {
@@ -341,7 +334,7 @@ impl<T: Real> Ldlt<T> {
     /// separator rows and the first separator ancestors.
     fn whole(&mut self) -> (Part<'_, T>, &[T], &[u32]) {
         let columns = Columns::new(&mut self.l, &mut self.d, &mut self.fill, (0, 0));
-        let part = Part::new(&mut self.work, &mut self.reach, &mut self.seen, columns);
+        let part = Part::new(&mut self.first, columns);
         (part, &self.stash, &self.top)
     }
 }
@@ -377,17 +370,12 @@ struct Columns<'a, T> {
 }
 
 impl<'a, T: Real> Part<'a, T> {
-    /// A part of the work vector `y`, row list `reach` and bit set `seen`, on `columns`.
-    fn new(
-        y: &'a mut [T],
-        reach: &'a mut [u32],
-        seen: &'a mut [usize],
-        columns: Columns<'a, T>,
-    ) -> Self {
+    /// The buffers of `workspace`, on `columns`.
+    fn new(workspace: &'a mut Workspace<T>, columns: Columns<'a, T>) -> Self {
         Self {
-            y,
-            reach,
-            seen,
+            y: &mut workspace.y,
+            reach: &mut workspace.reach,
+            seen: &mut workspace.seen,
             columns,
         }
     }
