@@ -16,6 +16,8 @@ use alloc::vec;
 use alloc::vec::Vec;
 use folio_kernels::Real;
 
+use crate::vector::{dot, norm2};
+
 /// The Krylov basis and the Hessenberg least-squares problem of one GMRES cycle.
 ///
 /// Owns $m + 1$ basis vectors and one work vector of the system order $n$, and
@@ -186,18 +188,6 @@ fn above<T: Real>(a: T, b: T) -> bool {
     a.partial_cmp(&b) == Some(core::cmp::Ordering::Greater)
 }
 
-/// $u^\top v$.
-#[inline]
-fn dot<T: Real>(u: &[T], v: &[T]) -> T {
-    u.iter().zip(v).fold(T::ZERO, |acc, (&a, &b)| acc + a * b)
-}
-
-/// $\lVert v\rVert_2$.
-#[inline]
-fn norm2<T: Real>(v: &[T]) -> T {
-    folio_kernels::math::sqrt(dot(v, v))
-}
-
 /// $|x|$.
 #[inline]
 fn abs<T: Real>(x: T) -> T {
@@ -211,8 +201,9 @@ mod tests {
 
     use super::{Gmres, Operator};
     use crate::chain::{Chain, kkt_values};
-    use crate::kkt::{Kkt, max_abs};
+    use crate::kkt::Kkt;
     use crate::ordering::Ordering;
+    use crate::vector::max_abs;
 
     /// A dense nonsymmetric matrix with the identity as the preconditioner.
     struct Dense(Vec<Vec<f64>>);

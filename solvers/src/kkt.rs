@@ -12,6 +12,7 @@ use crate::ordering::{Ordering, QUASI_DEFINITE_RESTART, QUASI_DEFINITE_SHIFT};
 use crate::pattern::KktPattern;
 use crate::settings::Parallelism;
 use crate::symbolic::Symbolic;
+use crate::vector::max_abs;
 
 /// Most primal shifts of [`Kkt::factorize_with_inertia_correction`] ($\beta$ up to
 /// $10^{3}$ times the largest primal diagonal).
@@ -390,22 +391,6 @@ pub(crate) fn symmetric_product<T: Real>(
         }
         out[c] += sum;
     }
-}
-
-/// $\lVert v\rVert_\infty$; NaN if any entry is NaN.
-#[must_use]
-pub fn max_abs<T: Real>(v: &[T]) -> T {
-    let mut m = T::ZERO;
-    for &x in v {
-        if !x.is_finite() {
-            return if x < T::ZERO { -x } else { x };
-        }
-        let a = if x < T::ZERO { -x } else { x };
-        if a > m {
-            m = a;
-        }
-    }
-    m
 }
 
 /// Largest primal diagonal magnitude, `diagonal(k)` for $k$ below `p.dofs` (1 if zero).

@@ -48,6 +48,7 @@ pub mod ring;
 pub mod settings;
 pub mod step;
 pub mod symbolic;
+pub mod vector;
 
 pub use error::SolverError;
 pub use kkt::Kkt;

@@ -36,11 +36,12 @@ use alloc::vec::Vec;
 use folio_kernels::Real;
 use folio_kernels::fused::{mul_add, mul_sub};
 
-use crate::kkt::{max_abs, symmetric_product};
+use crate::kkt::symmetric_product;
 use crate::ldlt::{FactorOutcome, Ldlt};
 use crate::ordering::Ordering;
 use crate::pattern::KktPattern;
 use crate::symbolic::Symbolic;
+use crate::vector::{dot, max_abs};
 
 mod transpose;
 
@@ -358,14 +359,6 @@ fn structure(kkt: &KktPattern) -> (Transpose, KktPattern, Symbolic) {
     (transpose, pattern, symbolic)
 }
 
-/// $u^\top v$.
-#[inline]
-fn dot<T: Real>(u: &[T], v: &[T]) -> T {
-    u.iter()
-        .zip(v)
-        .fold(T::ZERO, |acc, (&a, &b)| mul_add(acc, a, b))
-}
-
 /// The primal rows of constraint column `c` of `kkt`: the dofs of row `c` of $J$.
 fn jacobian_rows(kkt: &KktPattern, c: usize) -> &[u32] {
     let col = kkt.dofs + c;
@@ -379,8 +372,8 @@ mod tests {
 
     use super::NormalEquations;
     use crate::chain::{Chain, dense, kkt_values};
-    use crate::kkt::max_abs;
     use crate::pattern::KktPattern;
+    use crate::vector::max_abs;
 
     /// The chain's KKT values, its dense $J$ (rows × dofs) and $W^{-1}_d = 1/(1 + d)$.
     fn chain() -> (KktPattern, Vec<f64>, Vec<Vec<f64>>, Vec<f64>) {

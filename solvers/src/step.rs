@@ -23,7 +23,7 @@ use folio_kernels::{Real, Vec3Ops};
 
 use crate::assembly::{Assemble, Derivatives};
 use crate::error::SolverError;
-use crate::kkt::{Kkt, max_abs};
+use crate::kkt::Kkt;
 use crate::ldlt::FactorOutcome;
 use crate::model::Model;
 use crate::normal_equations::NormalEquations;
@@ -31,6 +31,7 @@ use crate::ordering::Ordering;
 use crate::pattern::KktPattern;
 use crate::report::{StepReport, StepStatus};
 use crate::settings::{Parallelism, Settings};
+use crate::vector::max_abs;
 
 mod line_search;
 mod projection;

@@ -2,15 +2,15 @@
 //! $\psi = E + \mu\lVert C\rVert_2$ (module docs of [`super`]), with its second-order
 //! correction.
 
-use folio_kernels::{Real, math};
+use folio_kernels::Real;
 
 use super::{Workspace, add_to};
 use crate::assembly::Derivatives;
 use crate::error::SolverError;
-use crate::kkt::max_abs;
 use crate::model::Model;
 use crate::report::StepReport;
 use crate::settings::Settings;
+use crate::vector::{max_abs, norm2};
 
 /// Outcome of one backtracking line search.
 #[derive(Clone, Copy, Debug)]
@@ -77,15 +77,6 @@ impl<T: Real> Merit<T> {
             && (e <= self.energy_ceiling || theta <= T::from_f64(0.9) * self.theta0);
         (merit.is_finite() && (penalty || filter)).then_some(merit)
     }
-}
-
-/// $\lVert v\rVert_2$.
-fn norm2<T: Real>(v: &[T]) -> T {
-    let mut sum = T::ZERO;
-    for &x in v {
-        sum += x * x;
-    }
-    math::sqrt(sum)
 }
 
 impl<T: Real> Workspace<T> {

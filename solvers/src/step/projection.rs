@@ -5,9 +5,9 @@ use folio_kernels::Real;
 use super::{Solver, State, Workspace};
 use crate::assembly::Derivatives;
 use crate::error::SolverError;
-use crate::kkt::max_abs;
 use crate::model::Model;
 use crate::settings::Settings;
+use crate::vector::max_abs;
 
 /// Step halvings a projection iteration may try before it gives up.
 const PROJECTION_HALVINGS: u32 = 6;
