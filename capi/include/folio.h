@@ -237,12 +237,12 @@ typedef uint32_t FolioEffects;
 /**
  * The book to create. Start from `folio_book_settings_default` and change fields; every
  * field is checked by `folio_book_create` (`FOLIO_STATUS_INVALID_ARGUMENT` names the first
- * bad one). Lengths are page units, times seconds. The fields not listed here (weights,
+ * bad one), by the same rules as a scene file's `[book]` and `[solver]`. Lengths are page units, times seconds. The fields not listed here (weights,
  * masses, solver tolerances) take the seed's defaults for the chosen precision.
  */
 typedef struct FolioBookSettings {
     /**
-     * Pages in the book, $\ge 1$. Default 100.
+     * Pages in the book, 1 to 100000. Default 100.
      */
     uint32_t total_pages;
     /**
@@ -251,20 +251,24 @@ typedef struct FolioBookSettings {
      */
     uint32_t left_pages;
     /**
-     * Page width $W$, finite, $> 0$ and at most $10^6$. Default 12 (the seed's).
+     * Page width $W$, finite, large enough to touch (a grid cell at least 100 times the
+     * constraint tolerance: $W \ge 0.08$ at 8 quads across) and at most $1.2 \cdot 10^5$.
+     * Default 12 (the seed's).
      */
     double page_width;
     /**
-     * Page height over width, $H / W$, finite and $> 0$, with $H \le 10^6$. Default
+     * Page height over width, $H / W$, finite and $> 0$, with $H \le 1.2 \cdot 10^5$. Default
      * $\sqrt 2$ (ISO 216).
      */
     double aspect_ratio;
     /**
-     * Thickness of one page, finite and $> 0$. Default 0.0075 (the seed's).
+     * Thickness of one page, at least $10^{-6} W$, the book (pages x thickness) at most
+     * $1.2 \cdot 10^5$. Default 0.0075 (the seed's).
      */
     double page_thickness;
     /**
-     * Time step $h$ of one `folio_book_step`, finite and $> 0$. Default $1/60$ s.
+     * Time step $h$ of one `folio_book_step`, in $[10^{-6}, 0.1]$ s (the range scene files
+     * allow). Default $1/60$ s.
      */
     double time_step;
     /**

@@ -46,13 +46,9 @@ pub unsafe extern "C" fn folio_book_create_from_scene(
         // SAFETY: non-NULL (checked) and NUL-terminated (contract); the bytes are only read,
         // and only during this call.
         let text = unsafe { CStr::from_ptr(toml_utf8) };
-        let text = text.to_str().map_err(|e| {
-            invalid(format!(
-                "the scene is not UTF-8 (byte {} starts an invalid sequence)",
-                e.valid_up_to()
-            ))
-        })?;
-        let scene = Scene::parse(text).map_err(|e| invalid(e.to_string()))?;
+        // The same reading as `folio check`: UTF-8 (else the bad byte's place), then the
+        // scene's checks.
+        let scene = Scene::parse_bytes(text.to_bytes()).map_err(|e| invalid(e.to_string()))?;
         let model = *scene.model.get_ref();
         if model != ModelKind::Dog {
             return Err(invalid(format!(

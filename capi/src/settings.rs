@@ -38,12 +38,6 @@ pub const FOLIO_EFFECT_BLOCKS: FolioEffects = 1 << 3;
 /// Finger-bookmarking's history of the held page (Sec. 4.1).
 pub const FOLIO_EFFECT_BOOKMARKING: FolioEffects = 1 << 4;
 
-/// Largest page width and height accepted (page units). The book itself accepts any finite
-/// size, but squared distances of a page near `f64::MAX` overflow (a grab then panics in
-/// the book, caught here as `FOLIO_STATUS_PANIC`), and in `f32` already near $10^{19}$;
-/// $10^6$ keeps every square far inside `f32`.
-const MAX_PAGE_SIZE: f64 = 1e6;
-
 /// Every effect.
 pub const FOLIO_EFFECTS_ALL: FolioEffects = FOLIO_EFFECT_GRAVITY
     | FOLIO_EFFECT_GLUE
@@ -53,24 +47,28 @@ pub const FOLIO_EFFECTS_ALL: FolioEffects = FOLIO_EFFECT_GRAVITY
 
 /// The book to create. Start from `folio_book_settings_default` and change fields; every
 /// field is checked by `folio_book_create` (`FOLIO_STATUS_INVALID_ARGUMENT` names the first
-/// bad one). Lengths are page units, times seconds. The fields not listed here (weights,
+/// bad one), by the same rules as a scene file's `[book]` and `[solver]`. Lengths are page units, times seconds. The fields not listed here (weights,
 /// masses, solver tolerances) take the seed's defaults for the chosen precision.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FolioBookSettings {
-    /// Pages in the book, $\ge 1$. Default 100.
+    /// Pages in the book, 1 to 100000. Default 100.
     pub total_pages: u32,
     /// Pages in the left block, $\le$ `total_pages`; the rest are in the right block.
     /// Default 50.
     pub left_pages: u32,
-    /// Page width $W$, finite, $> 0$ and at most $10^6$. Default 12 (the seed's).
+    /// Page width $W$, finite, large enough to touch (a grid cell at least 100 times the
+    /// constraint tolerance: $W \ge 0.08$ at 8 quads across) and at most $1.2 \cdot 10^5$.
+    /// Default 12 (the seed's).
     pub page_width: f64,
-    /// Page height over width, $H / W$, finite and $> 0$, with $H \le 10^6$. Default
+    /// Page height over width, $H / W$, finite and $> 0$, with $H \le 1.2 \cdot 10^5$. Default
     /// $\sqrt 2$ (ISO 216).
     pub aspect_ratio: f64,
-    /// Thickness of one page, finite and $> 0$. Default 0.0075 (the seed's).
+    /// Thickness of one page, at least $10^{-6} W$, the book (pages x thickness) at most
+    /// $1.2 \cdot 10^5$. Default 0.0075 (the seed's).
     pub page_thickness: f64,
-    /// Time step $h$ of one `folio_book_step`, finite and $> 0$. Default $1/60$ s.
+    /// Time step $h$ of one `folio_book_step`, in $[10^{-6}, 0.1]$ s (the range scene files
+    /// allow). Default $1/60$ s.
     pub time_step: f64,
     /// Quads of the active page's grid across the page (binding to fore-edge), $\ge 2$.
     /// Default 8.
@@ -121,26 +119,19 @@ fn effect_bits(e: Effects) -> FolioEffects {
 
 impl FolioBookSettings {
     /// The solver's settings in precision `T`: the seed's defaults for `T` with these
-    /// fields. Checks what only the C API has (the cover flag, the page's upper size, the
-    /// effect bits); the book checks the rest when it is built.
+    /// fields. Checks what only the C API has (the cover flag, the effect bits), then the
+    /// validation scene files use ([`folio_scene::limits::book`], on the same fields in
+    /// `f64`): a field a scene file may not hold is refused here too. The book checks the
+    /// precision's own limits when it is built.
     ///
     /// # Errors
-    /// `INVALID_ARGUMENT` for a cover flag other than 0 or 1, a page larger than
-    /// `MAX_PAGE_SIZE` or an unknown effect bit.
+    /// `INVALID_ARGUMENT` for a cover flag other than 0 or 1, an unknown effect bit, or a
+    /// setting [`folio_scene::limits::book`] refuses (the message names the field).
     pub(crate) fn book_settings<T: Real>(&self) -> Result<BookSettings<T>, Failure> {
         if self.cover > 1 {
             return Err(Failure::invalid(format!(
                 "`cover` must be 0 or 1, not {}",
                 self.cover
-            )));
-        }
-        // Non-finite values are left to the book, whose message names the field.
-        let height = self.page_width * self.aspect_ratio;
-        let finite = self.page_width.is_finite() && self.aspect_ratio.is_finite();
-        if finite && (self.page_width > MAX_PAGE_SIZE || height > MAX_PAGE_SIZE) {
-            return Err(Failure::invalid(format!(
-                "the page is {} x {height} page units; at most {MAX_PAGE_SIZE:e} each",
-                self.page_width
             )));
         }
         let unknown = self.effects & !FOLIO_EFFECTS_ALL;
@@ -149,8 +140,22 @@ impl FolioBookSettings {
                 "`effects` has unknown bits {unknown:#x} (known: {FOLIO_EFFECTS_ALL:#x})"
             )));
         }
+        let wide = self.fill(BookSettings::<f64>::default());
+        folio_scene::limits::book(&wide).map_err(|r| {
+            // The scene key's section is no part of the C field's name.
+            let field = ["book.", "solver."]
+                .iter()
+                .find_map(|section| r.key.strip_prefix(section))
+                .unwrap_or(&r.key);
+            let message = r.message.replace(&r.key, field);
+            Failure::invalid(message)
+        })?;
+        Ok(self.fill(BookSettings::<T>::default()))
+    }
+
+    /// `book` with these fields.
+    fn fill<T: Real>(&self, mut book: BookSettings<T>) -> BookSettings<T> {
         let on = |bit: FolioEffects| self.effects & bit != 0;
-        let mut book = BookSettings::<T>::default();
         book.params.total_pages = self.total_pages;
         book.params.left_pages = self.left_pages;
         book.params.page_width = self.page_width;
@@ -167,7 +172,7 @@ impl FolioBookSettings {
             blocks: on(FOLIO_EFFECT_BLOCKS),
             bookmarking: on(FOLIO_EFFECT_BOOKMARKING),
         };
-        Ok(book)
+        book
     }
 }
 

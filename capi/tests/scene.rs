@@ -80,7 +80,10 @@ fn bad_scenes_are_refused_with_their_place() {
         ),
         (cone.to_vec(), "DOG book"),
         (format!("{HEAD}[book]\npages = 0\n").into_bytes(), "line 5"),
-        (b"name = \"\xff\"\n".to_vec(), "not UTF-8 (byte 8"),
+        (
+            b"name = \"\xff\"\n".to_vec(),
+            "line 1, column 9: the file is not UTF-8: byte 8",
+        ),
     ];
     for (text, word) in cases {
         assert_eq!(

@@ -7,29 +7,32 @@
 //! folio check SCENE...            check scene files without running them
 //! ```
 //!
-//! A run writes `report.json` into `--out` (default `out/<scene>/`) and prints a summary.
-//! Exit status: 0 on success, 1 when a scene does not check or a run fails, 2 for bad
-//! arguments.
+//! A run writes `report.json` into `--out` (default `out/<scene>/`; a scene's name is one
+//! file-name component, so nothing is written elsewhere) and prints a summary. Every frame
+//! is held to health bounds ([`health`]); the exit status ([`exit`]) tells a good run (0)
+//! from a scene that does not check (1), bad arguments (2), a bad run (3) and outputs that
+//! could not be written (4).
 
 extern crate alloc;
 
+mod exit;
 mod export;
+mod health;
 mod obj;
 mod outputs;
+mod progress;
 mod render;
 mod run;
 mod sheet_run;
 mod sheet_view;
 mod timeline;
 
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-
 use folio_scene::builtin;
+use folio_scene::number::show;
 use folio_scene::scene::Scene;
 use run::Report;
 
@@ -38,7 +41,7 @@ const USAGE: &str = "usage: folio [run SCENE_OR_NAME [--out DIR] | list | check 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let words: Vec<&str> = args.iter().map(String::as_str).collect();
-    match words.as_slice() {
+    ExitCode::from(match words.as_slice() {
         [] => run_named(builtin::SCENES[0].0, None),
         ["run", target] => run_named(target, None),
         ["run", target, "--out", dir] => run_named(target, Some(PathBuf::from(dir))),
@@ -49,111 +52,88 @@ fn main() -> ExitCode {
                     .unwrap_or_default();
                 println!("{name:<18} {description}");
             }
-            ExitCode::SUCCESS
+            exit::GOOD
         }
         ["check", files @ ..] if !files.is_empty() => check(files),
         ["help" | "--help" | "-h"] => {
-            println!("{USAGE}");
-            ExitCode::SUCCESS
+            println!("{USAGE}\n\n{}", exit::HELP);
+            exit::GOOD
         }
         _ => {
             eprintln!("{USAGE}");
-            ExitCode::from(2)
+            exit::USAGE
         }
-    }
+    })
+}
+
+/// Reads and checks the scene file `file`, as `check` and `run` both do.
+///
+/// # Errors
+/// The message, with the error's place.
+fn read_scene(file: &str) -> Result<Scene, String> {
+    let bytes = std::fs::read(file).map_err(|e| format!("{file}: {e}"))?;
+    Scene::parse_bytes(&bytes).map_err(|e| format!("{file}: {e}"))
 }
 
 /// Checks every file; prints `ok` or the error with its place.
-fn check(files: &[&str]) -> ExitCode {
+fn check(files: &[&str]) -> u8 {
     let mut failed = false;
     for file in files {
-        match std::fs::read_to_string(file) {
-            Ok(text) => match Scene::parse(&text) {
-                Ok(_) => println!("{file}: ok"),
-                Err(e) => {
-                    eprintln!("{file}: {e}");
-                    failed = true;
-                }
-            },
+        match read_scene(file) {
+            Ok(_) => println!("{file}: ok"),
             Err(e) => {
-                eprintln!("{file}: {e}");
+                eprintln!("{e}");
                 failed = true;
             }
         }
     }
-    if failed {
-        ExitCode::FAILURE
-    } else {
-        ExitCode::SUCCESS
-    }
+    if failed { exit::BAD_SCENE } else { exit::GOOD }
 }
 
 /// Runs a scene file or a built-in scene by name.
-fn run_named(target: &str, out: Option<PathBuf>) -> ExitCode {
-    let (text, origin) = match builtin::scene(target) {
-        Some(text) => (text.to_string(), format!("built-in scene {target}")),
-        None if Path::new(target).is_file() => match std::fs::read_to_string(target) {
-            Ok(text) => (text, target.to_string()),
-            Err(e) => {
-                eprintln!("{target}: {e}");
-                return ExitCode::FAILURE;
-            }
-        },
+fn run_named(target: &str, out: Option<PathBuf>) -> u8 {
+    let scene = match builtin::scene(target) {
+        Some(text) => Scene::parse(text).map_err(|e| format!("built-in scene {target}: {e}")),
+        None if Path::new(target).is_file() => read_scene(target),
         None => {
             let names: Vec<&str> = builtin::SCENES.iter().map(|s| s.0).collect();
-            eprintln!(
+            Err(format!(
                 "{target}: no such file or built-in scene (built-in: {})",
                 names.join(", ")
-            );
-            return ExitCode::FAILURE;
+            ))
         }
     };
-    let scene = match Scene::parse(&text) {
+    let scene = match scene {
         Ok(s) => s,
         Err(e) => {
-            eprintln!("{origin}: {e}");
-            return ExitCode::FAILURE;
+            eprintln!("{e}");
+            return exit::BAD_SCENE;
         }
     };
+    // The name is one file-name component (checked with the scene).
     let out = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
     let started = Instant::now();
-    let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden());
-    bar.set_style(
-        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} frames")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    bar.set_message(scene.name.clone());
-    // The bar appears once a run has lasted a second, and only on a terminal.
-    let terminal = std::io::stdout().is_terminal();
-    let mut shown = false;
     let mut outputs = match outputs::Outputs::new(&scene) {
         Ok(o) => o,
         Err(e) => {
-            eprintln!("{origin}: {e}");
-            return ExitCode::FAILURE;
+            eprintln!("{target}: {e}");
+            return exit::BAD_SCENE;
         }
     };
+    let progress = progress::Progress::start(&scene.name);
     let report = run::run(
         &scene,
-        |frame, frames| {
-            if !shown && terminal && started.elapsed().as_secs_f64() > 1.0 {
-                bar.set_draw_target(ProgressDrawTarget::stderr());
-                shown = true;
-            }
-            bar.set_length(u64::from(frames));
-            bar.set_position(u64::from(frame));
-        },
+        |frame, frames| progress.set(frame, frames),
         |frame, frames, shape| outputs.observe(frame, frames, shape),
     );
-    bar.finish_and_clear();
-    let report = match report {
+    progress.finish();
+    let mut report = match report {
         Ok(r) => r,
         Err(e) => {
-            eprintln!("{origin}: run failed: {e}");
-            return ExitCode::FAILURE;
+            eprintln!("{target}: the run could not start: {e}");
+            return exit::BAD_SCENE;
         }
     };
-    let mut report = report;
     if let Some(sheet) = outputs.sheet() {
         report.summary.page_coverage = Some(sheet.coverage());
         report.summary.paper_coverage = Some(sheet.paper_coverage());
@@ -161,14 +141,14 @@ fn run_named(target: &str, out: Option<PathBuf>) -> ExitCode {
     if scene.output.report {
         if let Err(e) = write_report(&out, &report) {
             eprintln!("{}: {e}", out.display());
-            return ExitCode::FAILURE;
+            return exit::OUTPUT;
         }
     }
     let written = match outputs.write(&out, &report) {
         Ok(w) => w,
         Err(e) => {
             eprintln!("{}: {e}", out.display());
-            return ExitCode::FAILURE;
+            return exit::OUTPUT;
         }
     };
     print_summary(&report, &out, started.elapsed().as_secs_f64());
@@ -183,15 +163,39 @@ fn run_named(target: &str, out: Option<PathBuf>) -> ExitCode {
     for (file, what) in written {
         println!("  wrote            {} ({what})", file.display());
     }
-    let unmet = report.unmet(&scene.expect);
-    if unmet.is_empty() {
-        println!("  expectations     met");
-        ExitCode::SUCCESS
+    print_verdict(&report)
+}
+
+/// Prints the health, the expectations and the verdict; the exit status.
+fn print_verdict(report: &Report) -> u8 {
+    let s = &report.summary;
+    let h = &s.health;
+    if h.good() {
+        println!("  health           every frame within its bounds");
     } else {
-        for u in &unmet {
-            eprintln!("  expectation not met: {u}");
+        let over = h.stretch_over + h.dog_residual_over + h.penetration_over;
+        println!(
+            "  health           {} bad frames: {} failed steps, {} inputs that did nothing, {over} above a bound",
+            h.bad_frames, h.failed_steps, h.input_problems
+        );
+        if let Some(first) = &h.first_bad {
+            println!("  first bad frame  {}: {}", first.frame, first.why);
+            eprintln!("frame {} is bad: {}", first.frame, first.why);
         }
-        ExitCode::FAILURE
+    }
+    if s.unmet.is_empty() {
+        println!("  expectations     met");
+    } else {
+        for u in &s.unmet {
+            println!("  expectation      not met: {u}");
+            eprintln!("expectation not met: {u}");
+        }
+    }
+    if report.good() {
+        exit::GOOD
+    } else {
+        println!("  verdict          bad run (exit status {})", exit::BAD_RUN);
+        exit::BAD_RUN
     }
 }
 
@@ -204,6 +208,7 @@ fn write_report(out: &Path, report: &Report) -> std::io::Result<()> {
 fn print_summary(report: &Report, out: &Path, seconds: f64) {
     let s = &report.summary;
     let opt = |v: Option<f64>| v.map_or_else(|| "-".to_string(), |v| format!("{v:.2e}"));
+    let fixed = |v: Option<f64>| v.map_or_else(|| "-".to_string(), |v| format!("{v:.4}"));
     let statuses: Vec<String> = s
         .status_counts
         .iter()
@@ -217,13 +222,29 @@ fn print_summary(report: &Report, out: &Path, seconds: f64) {
         "  step time        median {:.3} ms, p99 {:.3} ms",
         s.step_ms_median, s.step_ms_p99
     );
+    let b = &s.health.bounds;
     println!(
-        "  edge stretch     mean max {:.4}, mean RMSE {:.4}",
-        s.max_stretch_mean, s.rmse_stretch_mean
+        "  edge stretch     mean max {}, mean RMSE {}, max {} (bound {})",
+        fixed(s.max_stretch_mean),
+        fixed(s.rmse_stretch_mean),
+        fixed(s.max_stretch_max),
+        show(b.max_stretch)
     );
-    println!("  DOG residual     max {}", opt(s.dog_residual_max));
-    println!("  penetration      max {}", opt(s.penetration_max));
-    println!("  non-finite       {} frames", s.nonfinite_frames);
+    println!(
+        "  DOG residual     max {} (bound {})",
+        opt(s.dog_residual_max),
+        show(b.dog_residual)
+    );
+    println!(
+        "  penetration      max {} (bound {})",
+        opt(s.penetration_max),
+        b.penetration
+            .map_or_else(|| "none without collisions".into(), show)
+    );
+    println!(
+        "  non-finite       {} frames ({} with non-finite input, {} with a non-finite state)",
+        s.nonfinite_frames, s.health.nonfinite_input_frames, s.health.nonfinite_state_frames
+    );
     println!("  step status      {}", statuses.join(", "));
     println!(
         "  effects          {}",

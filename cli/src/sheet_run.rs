@@ -17,7 +17,7 @@ use serde::Serialize;
 
 use folio_scene::scene::Scene;
 
-use crate::run::{FrameRecord, Report, RunError, Shape, fail, summarize};
+use crate::run::{FrameRecord, Report, RunError, Shape, fail};
 
 /// One propagation of a tear (`report.json`'s `tearing.propagations`).
 #[derive(Clone, Debug, Serialize)]
@@ -146,9 +146,13 @@ pub fn run(
     let mut records = Vec::with_capacity(n as usize);
     let mut propagations = Vec::new();
     for frame in 0..n {
-        hands
+        // A finger target the sheet refuses is an input that did nothing: the run goes on.
+        let inputs: Vec<String> = hands
             .apply(&mut sheet, frame)
-            .map_err(|e| fail(format!("frame {frame}: {e}")))?;
+            .err()
+            .map(|e| format!("the hands' move at frame {frame} was refused ({e})"))
+            .into_iter()
+            .collect();
         let before = sheet.propagations().len();
         let t = Instant::now();
         let step = sheet.step();
@@ -172,7 +176,8 @@ pub fn run(
             refused: Some(step.refused),
             flips: Some(step.flips),
             triangles: Some(mesh.triangle_count()),
-            ..FrameRecord::new(frame, step_ms, format!("{:?}", step.status), !finite)
+            inputs,
+            ..FrameRecord::new(frame, step_ms, String::new(), !finite).solver(step.status)
         });
         observe(frame, n, Shape::Sheet(&sheet));
         progress(frame + 1, n);
@@ -188,7 +193,8 @@ pub fn run(
             path: t.path.clone(),
         })
         .collect();
-    let mut summary = summarize(&records, scene.effect_names(), None);
+    let mut report = Report::new(scene, records, None);
+    let summary = &mut report.summary;
     summary.propagations_total = Some(propagations.len());
     summary.tear_lengths = Some(tears.iter().map(|t| t.length).collect());
     summary.tear_start = sheet
@@ -196,17 +202,13 @@ pub fn run(
         .first()
         .map(|p| kind_name(p.kind).into());
     let raster = sheet.tears().raster();
-    Ok(Report {
-        scene: scene.name.clone(),
-        model: scene.model.get_ref().name(),
-        summary,
-        frames: records,
-        tearing: Some(TearingLog {
-            texture_size: [raster.width_px(), raster.height_px()],
-            propagations,
-            tears,
-        }),
-    })
+    report.tearing = Some(TearingLog {
+        texture_size: [raster.width_px(), raster.height_px()],
+        propagations,
+        tears,
+    });
+    report.judge(&scene.expect);
+    Ok(report)
 }
 
 #[cfg(test)]

@@ -21,7 +21,7 @@ use folio_geometry::{BlockSide, QuadGrid};
 use folio_kernels::{Real, Vec3Ops};
 
 use super::{PageError, PageModel, PageStatus, PageStep, check_finger, check_grab, material_point};
-use folio_book::{Book, BookSettings, GrabOutcome};
+use folio_book::{Book, BookSettings, BookStepReport, GrabOutcome};
 
 /// The DOG page (module docs).
 #[derive(Clone, Debug)]
@@ -35,6 +35,8 @@ pub struct DogPage<T: Real> {
     nodes: Vec<T::Vec3>,
     grid: QuadGrid,
     spacing: [f64; 2],
+    /// The book's report of the last step (its solver status, KKT size, contacts).
+    last: Option<BookStepReport<T>>,
 }
 
 impl<T: Real> DogPage<T> {
@@ -67,6 +69,7 @@ impl<T: Real> DogPage<T> {
             nodes,
             grid,
             spacing,
+            last: None,
         })
     }
 
@@ -74,6 +77,14 @@ impl<T: Real> DogPage<T> {
     #[must_use]
     pub fn book(&self) -> &Book<T> {
         &self.book
+    }
+
+    /// The book's report of the last [`PageModel::step`] (`None` before the first): what the
+    /// page model's [`PageStatus`] sums up (a stalled step's solver status, the KKT size,
+    /// the collision tests).
+    #[must_use]
+    pub fn last_report(&self) -> Option<&BookStepReport<T>> {
+        self.last.as_ref()
     }
 
     /// Copies the active page (page frame) into `nodes`, if there is one.
@@ -132,6 +143,7 @@ impl<T: Real> PageModel<T> for DogPage<T> {
 
     fn step(&mut self) -> Result<PageStep<T>, PageError> {
         let report = self.book.step()?;
+        self.last = Some(report);
         self.track();
         let finger_gap = match (self.book.held_node(), self.book.target()) {
             (Some(node), Some(target)) => self

@@ -1,41 +1,47 @@
-//! The book a DOG scene describes (`[book]`, `[weights]`): checked through the book's own
-//! [`BookSettings::validate`], each refusal reported at the scene key that set it.
+//! The book a DOG scene describes (`[book]`, `[weights]`, `[solver]`): checked by the
+//! validation the C API shares ([`crate::limits::book`], which runs the book's own
+//! [`BookSettings::validate`]), each refusal reported at the scene key that set it; then
+//! whether the scene's first grab can touch the page ([`check_reach`]).
 
 use core::ops::Range;
 
-use folio_book::{BookError, BookSettings, LayoutError};
+use folio_book::{Action, Book, BookSettings, GrabOutcome, InputOutcome, Script};
 use toml::Spanned;
 
+use crate::fixtures::{self, Kind};
+use crate::number::show;
 use crate::scene::Scene;
 use crate::settings::book_settings;
 
+pub use crate::limits::MAX_PAGES;
+
 type Problem = (Range<usize>, String);
 
-/// The most pages a scene's book may have: more only make every frame slower.
-pub const MAX_PAGES: u32 = 100_000;
-
 /// The scene keys of [`folio_book::BookParams`] that older scene files spell differently
-/// (serde aliases), so that an error finds the key the file wrote.
-const OLDER_SPELLINGS: [(&str, &str); 2] = [
+/// (serde aliases), or whose value another key sets (the page height is
+/// `aspect_ratio` x `page_width`), so that an error finds the key the file wrote.
+const OTHER_SPELLINGS: [(&str, &str); 3] = [
     ("book.total_pages", "book.pages"),
     ("book.page_thickness", "book.thickness"),
+    ("book.page_width", "book.aspect_ratio"),
 ];
 
-/// Where `key` (or its older spelling) sits in the scene, else `[book]`.
+/// Where `key` (or another spelling of it) sits in the scene, else `[book]`.
 fn span(scene: &Scene, key: &str) -> Range<usize> {
-    let older = OLDER_SPELLINGS
+    let other = OTHER_SPELLINGS
         .iter()
         .find(|(new, _)| *new == key)
         .map(|(_, old)| *old);
-    [Some(key), older]
+    [Some(key), other]
         .into_iter()
         .flatten()
         .find_map(|k| scene.keys.span(k))
         .unwrap_or_else(|| scene.book.as_ref().map_or(0..0, Spanned::span))
 }
 
-/// Checks a DOG scene's book: `cover` is an effect, at most [`MAX_PAGES`] pages, then
-/// everything [`BookSettings::validate`] checks, at the key that set it.
+/// Checks a DOG scene's book: `cover` is an effect, then the shared validation of the book
+/// `folio run` builds ([`crate::limits::book`], the one the C API uses), at the key that
+/// set the refused value.
 ///
 /// # Errors
 /// The span of the refused key and why.
@@ -47,46 +53,84 @@ pub fn check(scene: &Scene) -> Result<(), Problem> {
         ));
     }
     let settings: BookSettings<f64> = book_settings(scene);
-    let p = &settings.params;
-    if p.total_pages > MAX_PAGES {
-        let message = format!("book.total_pages must be between 1 and {MAX_PAGES}");
-        return Err((span(scene, "book.total_pages"), message));
-    }
-    settings.validate().map_err(|e| problem(scene, &e))
+    crate::limits::book(&settings).map_err(|r| (span(scene, &r.key), r.message))
 }
 
-/// A refusal of [`BookSettings::validate`] at its scene key.
-fn problem(scene: &Scene, e: &BookError) -> Problem {
-    let (key, message) = match *e {
-        BookError::Layout(LayoutError::NoPages) => (
-            "book.total_pages",
-            format!("book.total_pages must be between 1 and {MAX_PAGES}"),
-        ),
-        BookError::Layout(LayoutError::LeftPagesExceedTotal { .. }) => (
-            "book.left_pages",
-            "book.left_pages must be at most total_pages".into(),
-        ),
-        BookError::Layout(LayoutError::NonPositive { field }) => {
-            (field, format!("book.{field} must be finite and > 0"))
+/// Checks that the scene's first grab can touch the page: timed events grab the right
+/// block's top page, so that block must hold one; a book fixture's first grab (a camera
+/// ray) must hit this book as the run has it at that frame, with as many pages as it takes
+/// (a book far thicker, smaller or larger than the one the fixture was recorded on is never
+/// touched). Builds and steps the book as `folio run` does until the grab (milliseconds for
+/// the blocks alone; a one- or two-page book settles longer at creation).
+///
+/// # Errors
+/// The span of the input (or of `book.left_pages`) and why the grab cannot touch.
+pub fn check_reach(scene: &Scene) -> Result<(), Problem> {
+    let input = scene.input.get_ref();
+    let settings = book_settings::<f64>(scene);
+    let p = settings.params;
+    if let Some(events) = &input.events {
+        if p.left_pages >= p.total_pages {
+            let at = scene
+                .keys
+                .span("book.left_pages")
+                .unwrap_or_else(|| events.span());
+            return Err((
+                at,
+                "the first grab takes the right block's top page, but book.left_pages leaves \
+                 that block empty"
+                    .into(),
+            ));
         }
-        BookError::Layout(LayoutError::TooFewMidlineNodes { .. }) => (
-            "midline_nodes",
-            "book.midline_nodes must be at least 3".into(),
-        ),
-        BookError::Layout(LayoutError::TooLarge { field }) => {
-            (field, format!("book.{field} is too large: {e}"))
-        }
-        BookError::InvalidSetting { field, requirement } => {
-            (field, format!("{field} must be {requirement}"))
-        }
-        _ => ("", e.to_string()),
+        return Ok(());
+    }
+    let Some(fixture) = &input.fixture else {
+        return Ok(());
     };
-    let key = if key.starts_with("weights.") || key.starts_with("book.") {
-        key.to_string()
-    } else {
-        format!("book.{key}")
+    let name = fixture.get_ref();
+    let (Some(Kind::Book), Some(text)) = (fixtures::kind(name), fixtures::text(name)) else {
+        return Ok(());
     };
-    (span(scene, &key), message)
+    let script = Script::parse(text).map_err(|e| (fixture.span(), e.to_string()))?;
+    let Some((frame, mut action)) = script.events.iter().find_map(|e| match e.action {
+        Action::Grab { .. } => Some((e.frame, e.action)),
+        _ => None,
+    }) else {
+        return Ok(());
+    };
+    if let (Some(k), Action::Grab { pages, .. }) = (&input.pages, &mut action) {
+        *pages = *k.get_ref();
+    }
+    let mut book = Book::<f64>::new(settings).map_err(|e| (fixture.span(), e.to_string()))?;
+    // The run steps the book until the grab (a book at rest simulates only its blocks).
+    for _ in 0..frame {
+        book.step().map_err(|e| (fixture.span(), e.to_string()))?;
+    }
+    let outcome = book
+        .apply(script.camera, script.forward, action)
+        .map_err(|e| (fixture.span(), e.to_string()))?;
+    let thick = f64::from(p.total_pages) * p.page_thickness;
+    let why = match outcome {
+        InputOutcome::Grab(GrabOutcome::Grabbed { .. }) => return Ok(()),
+        InputOutcome::Grab(GrabOutcome::NotEnoughPages) => {
+            let at = input.pages.as_ref().map_or(fixture.span(), Spanned::span);
+            return Err((
+                at,
+                format!(
+                    "the fixture's grab at frame {frame} takes more pages than the block it \
+                     hits holds"
+                ),
+            ));
+        }
+        _ => format!(
+            "the fixture's grab at frame {frame} misses the page: its camera ray was recorded \
+             on a 12 x 17 book 0.75 thick; this book's pages are {} x {} and it is {} thick",
+            show(p.page_width),
+            crate::number::short(p.page_height()),
+            crate::number::short(thick)
+        ),
+    };
+    Err((fixture.span(), why))
 }
 
 #[cfg(test)]

@@ -96,8 +96,9 @@ pub fn check(
                 if !inside {
                     let span = e.get_ref().grab.as_ref().map_or(e.span(), Spanned::span);
                     let message = format!(
-                        "the grab point must lie on the {} x {:.3} page",
-                        size[0], size[1]
+                        "the grab point must lie on the {} x {} page",
+                        crate::number::show(size[0]),
+                        crate::number::show(size[1])
                     );
                     return Err((span, message));
                 }

@@ -168,8 +168,9 @@ pub fn check(hands: &Spanned<Vec<Spanned<HandSpec>>>, size: [f64; 2]) -> Result<
                 return Err((
                     f.span(),
                     format!(
-                        "a finger must pinch the {} x {} sheet (0 <= u <= {0}, 0 <= v <= {1})",
-                        size[0], size[1]
+                        "a finger must pinch the {w} x {h} sheet (0 <= u <= {w}, 0 <= v <= {h})",
+                        w = crate::number::show(size[0]),
+                        h = crate::number::show(size[1])
                     ),
                 ));
             }

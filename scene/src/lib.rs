@@ -4,7 +4,9 @@
 //! line and column ([`scene`]), the timed events and hands that drive a run ([`events`],
 //! [`hands`]), the recorded fixtures and built-in scenes they name ([`fixtures`],
 //! [`builtin`]), the model settings a scene describes ([`settings`]) and the tearing sheet of
-//! a sheet scene ([`sheet`]).
+//! a sheet scene ([`sheet`]); the limits a DOG book's settings must meet, shared with the C
+//! API ([`limits`]), a scene name's rules ([`name`]) and short numbers in messages
+//! ([`number`]).
 //!
 //! Layers: the models (`folio-book`, `folio-pages`, `folio-tearing`) below; the `folio`
 //! command and the C API (`folio-capi`) above, both reading scenes through this crate.
@@ -17,6 +19,9 @@ pub mod events;
 pub mod fixtures;
 pub mod hands;
 pub mod keys;
+pub mod limits;
+pub mod name;
+pub mod number;
 pub mod scene;
 pub mod settings;
 pub mod sheet;

@@ -65,21 +65,28 @@ pub struct Scene {
     pub keys: KeySpans,
 }
 
-/// A scene's stated expectations, checked against the run's summary.
+/// A scene's stated expectations, checked against the run's summary. The per-frame bounds
+/// (`max_stretch`, `dog_residual_max`, `penetration_max`, `failed_steps`) replace the
+/// health bounds every run is held to (defaults: 10 % stretch, a DOG residual of 1e-2,
+/// one page thickness of penetration, no failed step).
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Expect {
     /// Pages left, right and held at the end (DOG book).
     pub final_pages: Option<[u32; 3]>,
+    /// Upper bound on every frame's max edge stretch (default 0.1).
+    pub max_stretch: Option<f64>,
     /// Upper bound on the mean max edge stretch.
     pub max_stretch_mean: Option<f64>,
     /// Upper bound on the mean RMSE edge stretch.
     pub rmse_stretch_mean: Option<f64>,
-    /// Upper bound on the DOG residual after any step.
+    /// Upper bound on the DOG residual after any step (default 1e-2).
     pub dog_residual_max: Option<f64>,
-    /// Upper bound on the penetration into a block after collision handling.
+    /// Upper bound on the penetration into a block after collision handling (default: one
+    /// page thickness).
     pub penetration_max: Option<f64>,
-    /// Most frames whose step failed (`Stalled`, a failed line search or factorization).
+    /// Most frames whose step failed (`Stalled`, non-finite input, a failed line search or
+    /// factorization, a refused step; default 0).
     pub failed_steps: Option<usize>,
     /// Lower bound on the length of the longest tear in the pattern (sheet units; sheet).
     pub tear_length_min: Option<Spanned<f64>>,
@@ -126,9 +133,7 @@ pub enum ModelKind {
     Sheet,
 }
 
-/// The largest weight a scene may give (`[weights]`): larger ones only stiffen the page
-/// into a badly conditioned step.
-pub const MAX_WEIGHT: f64 = 1e9;
+pub use crate::limits::MAX_WEIGHT;
 
 /// Every effect a scene may name.
 pub const EFFECTS: [&str; 9] = [
@@ -371,6 +376,31 @@ pub fn line_column(text: &str, offset: usize) -> (usize, usize) {
 }
 
 impl Scene {
+    /// Parses and checks the bytes of a scene file: as [`Scene::parse`], after checking
+    /// that they are UTF-8.
+    ///
+    /// # Errors
+    /// Bytes that are not UTF-8, at the line and column of the first bad byte, with its
+    /// byte offset; else as [`Scene::parse`].
+    pub fn parse_bytes(bytes: &[u8]) -> Result<Self, SceneError> {
+        match core::str::from_utf8(bytes) {
+            Ok(text) => Self::parse(text),
+            Err(e) => {
+                let at = e.valid_up_to();
+                // The valid prefix places the bad byte.
+                let valid = core::str::from_utf8(&bytes[..at]).unwrap_or_default();
+                let (line, column) = line_column(valid, at);
+                Err(SceneError {
+                    line,
+                    column,
+                    message: format!(
+                        "the file is not UTF-8: byte {at} (0-based) starts an invalid sequence"
+                    ),
+                })
+            }
+        }
+    }
+
     /// Parses and checks `text` (module docs).
     ///
     /// # Errors
@@ -394,6 +424,9 @@ impl Scene {
     fn check(&self, text: &str) -> Result<(), SceneError> {
         let bad =
             |span: Range<usize>, message: &str| Err(SceneError::at(text, Some(span), message));
+        if let Err(message) = crate::name::check(&self.name) {
+            return bad(self.keys.span("name").unwrap_or(0..0), &message);
+        }
         if let Some(f) = &self.frames {
             if !(1..=1_000_000).contains(f.get_ref()) {
                 return bad(f.span(), "frames must be between 1 and 1000000");
@@ -408,6 +441,20 @@ impl Scene {
                 .map_err(|(span, message)| SceneError::at(text, Some(span), message))?;
         } else {
             self.check_not_sheet(text)?;
+        }
+        let e = &self.expect;
+        let bounds = [
+            ("expect.max_stretch", e.max_stretch),
+            ("expect.max_stretch_mean", e.max_stretch_mean),
+            ("expect.rmse_stretch_mean", e.rmse_stretch_mean),
+            ("expect.dog_residual_max", e.dog_residual_max),
+            ("expect.penetration_max", e.penetration_max),
+        ];
+        for (key, v) in bounds {
+            if v.is_some_and(|v| !(v.is_finite() && v >= 0.0)) {
+                let span = self.keys.span(key).unwrap_or(0..0);
+                return bad(span, &format!("{key} must be finite and >= 0"));
+            }
         }
         let o = &self.output;
         if let Some(v) = &o.sheet_tiles {
@@ -427,10 +474,17 @@ impl Scene {
             if model != ModelKind::Dog {
                 return bad(book.span(), "[book] is for model = \"dog\" only");
             }
-            crate::book::check(self)
-                .map_err(|(span, message)| SceneError::at(text, Some(span), message))?;
         }
-        Ok(())
+        let at =
+            |(span, message): (Range<usize>, String)| SceneError::at(text, Some(span), message);
+        match model {
+            // The book as `folio run` and the C API build it, then its first grab.
+            ModelKind::Dog => crate::book::check(self)
+                .and_then(|()| crate::book::check_reach(self))
+                .map_err(at),
+            ModelKind::MassSpring => self.check_spring().map_err(at),
+            _ => Ok(()),
+        }
     }
 
     /// Refuses the keys of the sheet model in a scene of another model.
@@ -535,9 +589,9 @@ impl Scene {
                 return bad(w.span(), "[weights] is for model = \"dog\" only");
             }
             for (key, v) in w.get_ref().named() {
-                if !(v.is_finite() && (0.0..=MAX_WEIGHT).contains(&v)) {
+                if let Err(message) = crate::limits::weight(key, v) {
                     let span = self.keys.span(key).unwrap_or_else(|| w.span());
-                    return bad(span, "a weight must be in [0, 1e9]");
+                    return bad(span, &message);
                 }
             }
         }
@@ -552,8 +606,8 @@ impl Scene {
         }
         let s = section.get_ref();
         if let Some(h) = &s.time_step {
-            if !(h.get_ref().is_finite() && *h.get_ref() > 0.0 && *h.get_ref() <= 0.1) {
-                return bad(h.span(), "time_step must be in (0, 0.1] seconds");
+            if let Err(message) = crate::limits::time_step(*h.get_ref()) {
+                return bad(h.span(), &message);
             }
         }
         let dog_only = [
@@ -588,6 +642,29 @@ impl Scene {
             }
         }
         Ok(())
+    }
+
+    /// The mass-spring page's settings as `folio run` builds them, checked by the page's
+    /// own `validate()` (reported at `[solver]`, the only keys a scene sets).
+    fn check_spring(&self) -> Result<(), (Range<usize>, String)> {
+        let seed = self
+            .input
+            .get_ref()
+            .fixture
+            .as_ref()
+            .is_some_and(|f| f.get_ref() == "seed003-turn");
+        crate::settings::spring_settings(self, seed)
+            .validate()
+            .map_err(|e| {
+                let span = self
+                    .solver
+                    .as_ref()
+                    .map_or(self.input.span(), Spanned::span);
+                (
+                    span,
+                    format!("the mass-spring page refuses its settings: {e}"),
+                )
+            })
     }
 
     fn check_input(&self, text: &str, model: ModelKind) -> Result<(), SceneError> {

@@ -137,6 +137,7 @@ fn settings_problem(scene: &Scene, e: &TearingSheetError) -> Problem {
             max,
         }) => {
             let key = scene_key(field);
+            let [value, min, max] = [value, min, max].map(crate::number::show);
             let message = format!("{key} = {value} is outside [{min}, {max}]");
             (Some(key), message)
         }
