@@ -17,7 +17,8 @@ pub enum KernelError {
     /// (counter-clockwise positive, nodes in the term's documented order) is zero, negative,
     /// not above the relative threshold of [`crate::membrane`] or not finite, or the
     /// triangle is too small to carry a length (longest edge below
-    /// [`crate::Real::LENGTH_FLOOR`]); `index` names the triangle in the term's documented
+    /// [`crate::Real::LENGTH_FLOOR`], or below $\sqrt{\varepsilon}$ page units for a
+    /// [`crate::membrane::Membrane`]); `index` names the triangle in the term's documented
     /// order.
     NonPositiveRestArea {
         /// Which triangle of the term.

@@ -85,6 +85,21 @@ fn positive_part<T: Real>(s: Sym2<T>) -> Sym2<T> {
     }
 }
 
+/// Whether the longest edge of the rest triangle `u` is at least $\sqrt{\varepsilon}$ page
+/// units ($3.5\cdot 10^{-4}$ in `f32`, $1.5\cdot 10^{-8}$ in `f64`). Below that,
+/// $\lVert D_m^{-1}\rVert$ exceeds $1/\sqrt{\varepsilon}$ per unit and the quartic energy
+/// overflows for ordinary coordinates: rest edges of $10^{-15}$ in `f32` gave an infinite
+/// energy and Hessian at coordinates of order 1 (issue 20). A sheet's triangles are
+/// fractions of a page unit, far above it.
+#[must_use]
+fn meaningful_size<T: Real>(u: [[T; 2]; 3]) -> bool {
+    let sq = |a: [T; 2], b: [T; 2]| (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
+    let longest = [sq(u[0], u[1]), sq(u[1], u[2]), sq(u[2], u[0])]
+        .into_iter()
+        .fold(T::ZERO, |m, l| if l > m { l } else { m });
+    longest >= T::EPSILON
+}
+
 impl<T: Real> Membrane<T> {
     /// From the rest triangle `[u0, u1, u2]` in the 2D pattern (page units,
     /// counter-clockwise), the 2D Young's modulus `stretch_modulus` $Y > 0$ (force per
@@ -92,7 +107,8 @@ impl<T: Real> Membrane<T> {
     ///
     /// The rest triangle must satisfy $2A_0 > \sqrt{\varepsilon}\thinspace\ell_{\max}^2$ ($\ell_{\max}$
     /// its longest edge, $\varepsilon$ the precision's machine epsilon) and
-    /// $\ell_{\max} \ge$ [`Real::LENGTH_FLOOR`].
+    /// $\ell_{\max} \ge \sqrt{\varepsilon}$ page units (a rest shape far below any meaningful
+    /// size has an energy that overflows for ordinary coordinates).
     ///
     /// # Errors
     /// [`KernelError::NonFiniteParameter`] (`"pattern"`, `"stretch_modulus"`, `"poisson"`),
@@ -117,6 +133,9 @@ impl<T: Real> Membrane<T> {
         }
         let area2 = rest_triangle_area2(pattern, 0)?;
         let [u0, u1, u2] = pattern;
+        if !meaningful_size(pattern) {
+            return Err(KernelError::NonPositiveRestArea { index: 0 });
+        }
         let (e1, e2) = (
             [u1[0] - u0[0], u1[1] - u0[1]],
             [u2[0] - u0[0], u2[1] - u0[1]],

@@ -35,10 +35,6 @@ pub fn frame_metrics<T: Real>(
     samples: &[T::Vec3],
 ) -> Result<FrameMetrics<T>, PageError> {
     super::check_count(grid.len(), samples.len())?;
-    let spacing = [
-        size[0] / T::from_f64((grid.nx - 1) as f64),
-        size[1] / T::from_f64((grid.nz - 1) as f64),
-    ];
     let mut m = FrameMetrics {
         max_stretch: T::ZERO,
         rmse_stretch: T::ZERO,
@@ -46,25 +42,13 @@ pub fn frame_metrics<T: Real>(
     };
     let mut sum_sq = T::ZERO;
     let mut edges = 0usize;
-    let mut stretch = |a: usize, b: usize, rest: T| {
-        let s = abs(math::length::<T>(samples[a] - samples[b]) / rest - T::ONE);
+    edge_stretches(grid, size, samples, |s| {
         sum_sq += s * s;
         edges += 1;
         if s > m.max_stretch || !s.is_finite() {
             m.max_stretch = s;
         }
-    };
-    for j in 0..grid.nz {
-        for i in 0..grid.nx {
-            let k = grid.index(i, j);
-            if i + 1 < grid.nx {
-                stretch(k, grid.index(i + 1, j), spacing[0]);
-            }
-            if j + 1 < grid.nz {
-                stretch(k, grid.index(i, j + 1), spacing[1]);
-            }
-        }
-    }
+    });
     m.rmse_stretch = math::sqrt(sum_sq / T::from_f64(edges.max(1) as f64));
     for j in 1..grid.nz - 1 {
         for i in 1..grid.nx - 1 {
@@ -86,6 +70,49 @@ pub fn frame_metrics<T: Real>(
         }
     }
     Ok(m)
+}
+
+/// $\max_e \varepsilon_e$ alone (module docs): [`frame_metrics`]'s `max_stretch` without the
+/// rest; `samples` should hold one point per node of `grid` (edges off a shorter slice are
+/// skipped). NaN samples give NaN.
+#[must_use]
+pub fn max_stretch<T: Real>(grid: QuadGrid, size: [T; 2], samples: &[T::Vec3]) -> T {
+    let mut worst = T::ZERO;
+    edge_stretches(grid, size, samples, |s| {
+        if s > worst || !s.is_finite() {
+            worst = s;
+        }
+    });
+    worst
+}
+
+/// Calls `f` with $\varepsilon_e$ of every grid edge (across, then along, row by row).
+fn edge_stretches<T: Real>(
+    grid: QuadGrid,
+    size: [T; 2],
+    samples: &[T::Vec3],
+    mut f: impl FnMut(T),
+) {
+    let spacing = [
+        size[0] / T::from_f64(grid.nx.saturating_sub(1).max(1) as f64),
+        size[1] / T::from_f64(grid.nz.saturating_sub(1).max(1) as f64),
+    ];
+    let mut edge = |a: usize, b: usize, rest: T| {
+        if let (Some(&pa), Some(&pb)) = (samples.get(a), samples.get(b)) {
+            f(abs(math::length::<T>(pa - pb) / rest - T::ONE));
+        }
+    };
+    for j in 0..grid.nz {
+        for i in 0..grid.nx {
+            let k = grid.index(i, j);
+            if i + 1 < grid.nx {
+                edge(k, grid.index(i + 1, j), spacing[0]);
+            }
+            if j + 1 < grid.nz {
+                edge(k, grid.index(i, j + 1), spacing[1]);
+            }
+        }
+    }
 }
 
 fn abs<T: Real>(x: T) -> T {

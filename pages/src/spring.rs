@@ -19,11 +19,14 @@
 //! 4. the table (if on): a free particle on or under the plane $y = 0$ is put on it,
 //!    $y = 0$, and loses its downward velocity, $v_y < 0 \Rightarrow v_y = 0$; a particle
 //!    above it is left alone;
+//! 5. Provot's correction (if [`SpringSettings::strain_limit`] is set, the default):
+//!    stretch and shear springs put back within $\tau$ of their rest lengths, a row pushed
+//!    together buckles ([`limit`]);
 //!
 //! and after the last substep a key frame is recorded every key-frame interval.
 //!
 //! A step that would leave a non-finite coordinate, or one beyond [`Real::COORD_MAX`] (or
-//! whose implicit solve fails), restores the previous state and reports
+//! whose implicit solve fails, or whose strain limit is not reached), restores the previous state and reports
 //! [`PageStatus::Stalled`] (an explicit step past its stability limit ends there). A stalled
 //! frame still counts: the frame clock and the key frames go on.
 //!
@@ -33,7 +36,11 @@
 //! gripped particle $k$ is kinematic with the target $\bar x_k + (G - P)$, $\bar x_k$ its rest
 //! position and $P = (u, 0, v)$ the grabbed rest point: in substep $s$ of $n$ it is at
 //! $x_k^0 + \tfrac{s}{n}(\bar x_k + G - P - x_k^0)$ ($x_k^0$ its position at the start of the
-//! frame) with the velocity $(\bar x_k + G - P - x_k^0)/h$. A release frees the gripped
+//! frame) with the velocity $(\bar x_k + G - P - x_k^0)/h$. With the strain limit on, the
+//! translation $G - P$ is first cut to what the page can reach from its fixed spine
+//! ([`limit::reach`]), and such a frame reports [`PageStatus::Unreachable`]: before, a
+//! finger beyond the book dragged the held column along and the page stretched without
+//! bound (render grid 89x for a finger 100 units out). A release frees the gripped
 //! particles with the velocity they had; the page then moves under the springs and gravity
 //! alone. The frame's finger gap is the distance from the held material point on the render
 //! surface, $S(u, v)$, to the finger: zero (to rounding) for an edge grip on a particle
@@ -77,6 +84,7 @@ pub mod explicit;
 pub mod implicit;
 pub mod keyframes;
 pub mod lagrange;
+pub mod limit;
 pub mod network;
 pub mod replay;
 pub mod settings;
@@ -90,6 +98,7 @@ pub use energy::SpringEnergy;
 pub use implicit::ImplicitStepper;
 pub use keyframes::KeyFrames;
 pub use lagrange::LagrangeSurface;
+pub use limit::StrainLimit;
 pub use network::{Role, SpringNetwork};
 pub use replay::ReplayPage;
 pub use settings::{
@@ -124,6 +133,8 @@ pub struct SpringPage<T: Real> {
     sync: Synchronizer<T>,
     surface: LagrangeSurface<T>,
     recording: KeyFrames<T>,
+    limit: Option<StrainLimit<T>>,
+    out_of_reach: bool,
     hold: Option<Hold<T>>,
     gripped: Vec<u32>,
     frame: u64,
@@ -165,9 +176,13 @@ impl<T: Real> SpringPage<T> {
             settings.key_frame_capacity,
         );
         recording.push(&state.x);
+        let limit = settings
+            .strain_limit
+            .map(|tau| StrainLimit::new(&network, tau));
         Ok(Self {
             surface: LagrangeSurface::new(network.grid(), size, settings.interpolation_degree)
-                .with_floor(settings.floor),
+                .with_floor(settings.floor)
+                .with_stretch_guard(settings.strain_limit),
             previous: state.clone(),
             forces: zeros::<T>(n),
             gripped: Vec::with_capacity(n),
@@ -177,6 +192,8 @@ impl<T: Real> SpringPage<T> {
             implicit,
             sync,
             recording,
+            limit,
+            out_of_reach: false,
             hold: None,
             frame: 0,
         })
@@ -320,9 +337,23 @@ impl<T: Real> SpringPage<T> {
     /// $(x_k^{target} - x_k^{start})/h$; zero velocity while the finger has not moved yet.
     fn place_gripped(&mut self, s: u32, n: u32) {
         let h = self.settings.time_step;
-        let shift = self
+        let mut shift = self
             .hold
             .and_then(|hold| hold.finger.map(|f| f - hold.rest_point));
+        if let (Some(d), Some(limit)) = (shift, self.limit.as_ref()) {
+            let rho = T::ONE + limit.limit() * T::HALF;
+            let s = limit::reach(
+                d,
+                &self.gripped,
+                self.network.rest(),
+                self.network.roles(),
+                rho,
+            );
+            if s < T::ONE {
+                shift = Some(d * s);
+                self.out_of_reach = true;
+            }
+        }
         let fraction = T::from_f64(f64::from(s) / f64::from(n.max(1)));
         let rest = self.network.rest();
         for &k in &self.gripped {
@@ -393,8 +424,9 @@ impl<T: Real> SpringPage<T> {
         }
     }
 
-    /// Steps 3-4 of a substep (module docs).
-    fn constrain(&mut self) {
+    /// Steps 3-5 of a substep (module docs): `false` when Provot's correction did not reach
+    /// its bound ([`StrainLimit::converged`]).
+    fn constrain(&mut self) -> bool {
         let d = match self.settings.grip {
             // An edge grip moves its whole column as one: the dog-ear line is that column.
             Grip::Edge => None,
@@ -434,6 +466,17 @@ impl<T: Real> SpringPage<T> {
                 }
             }
         }
+        if let Some(limit) = self.limit.as_mut() {
+            limit.apply(
+                &mut self.state.x,
+                &mut self.state.v,
+                self.network.roles(),
+                self.settings.floor,
+                self.settings.substep(),
+            );
+            return limit.converged();
+        }
+        true
     }
 }
 
@@ -503,14 +546,14 @@ impl<T: Real> PageModel<T> for SpringPage<T> {
         self.previous.x.copy_from_slice(&self.state.x);
         self.previous.v.copy_from_slice(&self.state.v);
         let mut status = PageStatus::Moved;
+        self.out_of_reach = false;
         let n = self.settings.substeps.max(1);
         for s in 1..=n {
             self.place_gripped(s, n);
-            if !self.integrate() {
+            if !self.integrate() || !self.constrain() {
                 status = PageStatus::Stalled;
                 break;
             }
-            self.constrain();
         }
         if status == PageStatus::Stalled
             || !all_in_range::<T>(&self.state.x)
@@ -519,6 +562,8 @@ impl<T: Real> PageModel<T> for SpringPage<T> {
             self.state.x.copy_from_slice(&self.previous.x);
             self.state.v.copy_from_slice(&self.previous.v);
             status = PageStatus::Stalled;
+        } else if self.out_of_reach {
+            status = PageStatus::Unreachable;
         }
         self.frame += 1;
         if self.frame % u64::from(self.recording.stride()) == 0 {

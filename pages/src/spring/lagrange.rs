@@ -55,6 +55,19 @@
 //! free particle obeys: particles on or above the table are still interpolated exactly. (A
 //! particle held under the table by the finger is not lifted, its render point is.)
 //!
+//! **Stretch guard.** Where the particles fold sharply (a flick, a page pushed together on
+//! the table until it buckles) a polynomial of degree $p > 1$ through them overshoots between
+//! them: with every stretch and shear spring within Provot's 10 %
+//! ([`super::limit`]) the cubic's render edges measured up to 100 % (a finger flicking the
+//! fore edge to the spine's height; `tests/tests/bounded_pages.rs`). With a guard
+//! ([`LagrangeSurface::with_stretch_guard`], the page's `strain_limit`) a render grid
+//! sampled with an edge outside $[1 - \tau, 1 + \tau]$ of its rest length is sampled again
+//! with the bilinear surface ($p = 1$ both ways) for that frame: its edges along a particle
+//! line are pieces of the links, and across a cell they are convex combinations of the two
+//! links beside them, so they stretch no more than the links do and never dip under the
+//! table. The surface is then faceted for that frame; [`LagrangeSurface::eval`] (the finger
+//! gap) keeps degree $p$.
+//!
 //! **Evaluation.** Barycentric form on the stencil,
 //! $\ell^a_i(t) = \frac{w_{i-a}/(t - t_i)}{\sum_{k=a}^{a+p} w_{k-a}/(t - t_k)}$, with the
 //! equispaced weights $w_k = (-1)^k\binom{p}{k}$ (Berrut and Trefethen 2004), forward stable
@@ -159,7 +172,10 @@ pub struct LagrangeSurface<T: Real> {
     size: [T; 2],
     across: Axis<T>,
     along: Axis<T>,
+    /// The degree-1 axes of the stretch guard's fallback.
+    linear: [Axis<T>; 2],
     floor: bool,
+    guard: Option<T>,
 }
 
 impl<T: Real> LagrangeSurface<T> {
@@ -175,8 +191,22 @@ impl<T: Real> LagrangeSurface<T> {
             size,
             across: Axis::new(particles.nx, size[0], degree),
             along: Axis::new(particles.nz, size[1], degree),
+            linear: [
+                Axis::new(particles.nx, size[0], 1),
+                Axis::new(particles.nz, size[1], 1),
+            ],
             floor: false,
+            guard: None,
         }
+    }
+
+    /// The same surface with (`Some(limit)`) or without the stretch guard ("Stretch
+    /// guard" in the module docs): a sampled render grid with an edge stretched or
+    /// compressed by more than `limit` is sampled again at degree 1.
+    #[must_use]
+    pub fn with_stretch_guard(mut self, limit: Option<T>) -> Self {
+        self.guard = limit;
+        self
     }
 
     /// The same surface, with (`true`) or without the table's contact on its points: a
@@ -277,13 +307,34 @@ impl<T: Real> LagrangeSurface<T> {
             out.iter_mut().for_each(|o| *o = T::Vec3::ZERO);
             return Ok(());
         }
-        let (pu, pv) = (self.across.degree + 1, self.along.degree + 1);
+        self.sample_on(&self.across, &self.along, x, grid, out);
+        if let Some(limit) = self.guard {
+            let linear = self.across.degree == 1 && self.along.degree == 1;
+            if !linear && crate::metrics::max_stretch(grid, self.size, out) > limit {
+                let [across, along] = &self.linear;
+                self.sample_on(across, along, x, grid, out);
+            }
+        }
+        Ok(())
+    }
+
+    /// [`LagrangeSurface::sample`] on the stencils of `across` and `along` (checked input).
+    fn sample_on(
+        &self,
+        across: &Axis<T>,
+        along: &Axis<T>,
+        x: &[T::Vec3],
+        grid: QuadGrid,
+        out: &mut [T::Vec3],
+    ) {
+        let nx = across.nodes.len();
+        let (pu, pv) = (across.degree + 1, along.degree + 1);
         let mut l = [T::ZERO; MAX_PARTICLES_PER_SIDE];
         let mut m = [T::ZERO; MAX_PARTICLES_PER_SIDE];
         let mut rows = [T::Vec3::ZERO; MAX_PARTICLES_PER_SIDE];
         for (jr, line) in out.chunks_exact_mut(grid.nx).enumerate() {
             let v = material_point(grid, self.size, grid.index(0, jr))[1];
-            let b = self.along.basis(v, &mut m);
+            let b = along.basis(v, &mut m);
             rows[..nx].iter_mut().for_each(|r| *r = T::Vec3::ZERO);
             for (row, &mj) in x.chunks_exact(nx).skip(b).zip(&m[..pv]) {
                 if mj == T::ZERO {
@@ -295,7 +346,7 @@ impl<T: Real> LagrangeSurface<T> {
             }
             for (ir, o) in line.iter_mut().enumerate() {
                 let u = material_point(grid, self.size, grid.index(ir, jr))[0];
-                let a = self.across.basis(u, &mut l);
+                let a = across.basis(u, &mut l);
                 let mut p = T::Vec3::ZERO;
                 for (&r, &li) in rows[..nx].iter().skip(a).zip(&l[..pu]) {
                     if li != T::ZERO {
@@ -305,7 +356,6 @@ impl<T: Real> LagrangeSurface<T> {
                 *o = self.contact(p);
             }
         }
-        Ok(())
     }
 }
 

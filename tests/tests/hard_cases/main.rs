@@ -4,3 +4,5 @@
 //! nothing panicked.
 
 mod cli;
+mod pages;
+mod tearing;
