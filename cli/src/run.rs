@@ -11,7 +11,7 @@ use folio_geometry::mesh::TriMesh;
 use folio_pages::cone::{ConePage, ConeSettings};
 use folio_pages::dog::DogPage;
 use folio_pages::spring::SpringPage;
-use folio_pages::{PageModel, PageStatus, TouchScript, frame_metrics};
+use folio_pages::{Gestures, PageModel, PageStatus, TouchScript, frame_metrics};
 use folio_tearing::sheet::TearingSheet;
 
 use folio_scene::events;
@@ -225,9 +225,9 @@ impl Shape<'_> {
     }
 }
 
-/// The input of a scene as a touch script, when it is not a book fixture: a touch fixture
-/// or the scene's timed events.
-fn touch_input(scene: &Scene) -> Result<Option<(TouchScript, bool)>, RunError> {
+/// The input of a scene as gestures, when it is not a book fixture: a touch fixture or the
+/// scene's timed events.
+fn touch_input(scene: &Scene) -> Result<Option<(Gestures, bool)>, RunError> {
     let input = scene.input.get_ref();
     if let Some(events) = &input.events {
         let frames = scene.frames.as_ref().map(|f| *f.get_ref());
@@ -242,7 +242,7 @@ fn touch_input(scene: &Scene) -> Result<Option<(TouchScript, bool)>, RunError> {
     let text = fixtures::text(name).ok_or_else(|| fail("unknown fixture"))?;
     match fixtures::kind(name) {
         Some(Kind::Touch) => Ok(Some((
-            TouchScript::parse(text).map_err(fail)?,
+            TouchScript::parse(text).map_err(fail)?.into(),
             name == "seed003-turn",
         ))),
         _ => Ok(None),
@@ -295,7 +295,10 @@ pub fn run(
         let mut samples = vec![glam_zero(); grid.len()];
         let n = frames(scene, script.frames);
         for frame in 0..n {
-            script.at(frame).apply(page).map_err(fail)?;
+            script
+                .at(frame)
+                .apply(page)
+                .map_err(|e| fail(events::refusal(scene, None, frame, &e)))?;
             let t = Instant::now();
             let step = page.step().map_err(fail)?;
             let step_ms = t.elapsed().as_secs_f64() * 1e3;

@@ -6,12 +6,13 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-const SCENES: [&str; 7] = [
+const SCENES: [&str; 8] = [
     "page-turn",
     "peek",
     "bookmark-flip",
     "stack",
     "paperback",
+    "three-and-back",
     "cone-turn",
     "mass-spring-turn",
 ];
