@@ -10,10 +10,30 @@
 //! node order), so the contacts, their order and their arithmetic are unchanged.
 
 use alloc::vec::Vec;
-use folio_geometry::{Bounds, Wall};
+use folio_geometry::{Bounds, Corner, Wall};
 use folio_kernels::Real;
 
 use super::model::NodeMap;
+
+/// An obstacle whose reach over a box can be bounded: no point of a box it misses touches it.
+pub(crate) trait Reach<T> {
+    /// `true` when no point of `bounds` penetrates the obstacle.
+    fn misses(&self, bounds: &Bounds<T>) -> bool;
+}
+
+impl<T: Real> Reach<T> for Wall<T> {
+    #[inline]
+    fn misses(&self, bounds: &Bounds<T>) -> bool {
+        Wall::misses(self, bounds)
+    }
+}
+
+impl<T: Real> Reach<T> for Corner<T> {
+    #[inline]
+    fn misses(&self, bounds: &Bounds<T>) -> bool {
+        Corner::misses(self, bounds)
+    }
+}
 
 /// Per-column boxes, the page's box and the columns a wall may reach. Owns two buffers of
 /// `nx - 1` entries each (the free columns of the page grid), allocated at setup.
@@ -58,9 +78,9 @@ impl<T: Real> PageBroadPhase<T> {
         self.page = Some(page);
     }
 
-    /// Selects the columns `wall` may reach ([`PageBroadPhase::near`]): none when it misses
-    /// the page's box; returns the boxes tested.
-    pub(crate) fn select(&mut self, wall: &Wall<T>) -> usize {
+    /// Selects the columns `wall` (or corner) may reach ([`PageBroadPhase::near`]): none
+    /// when it misses the page's box; returns the boxes tested.
+    pub(crate) fn select(&mut self, wall: &impl Reach<T>) -> usize {
         self.near.clear();
         match self.page {
             Some(page) if !self.misses(wall, &page) => {}
@@ -75,8 +95,8 @@ impl<T: Real> PageBroadPhase<T> {
         1 + self.columns.len()
     }
 
-    /// [`Wall::misses`], never in the brute-force pass of the tests.
-    fn misses(&self, wall: &Wall<T>, bounds: &Bounds<T>) -> bool {
+    /// [`Reach::misses`], never in the brute-force pass of the tests.
+    fn misses(&self, wall: &impl Reach<T>, bounds: &Bounds<T>) -> bool {
         #[cfg(test)]
         if self.exhaustive {
             return false;

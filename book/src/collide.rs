@@ -3,9 +3,10 @@
 //! on the blocks, each node pushed out inelastically, pinned in the projection and held on
 //! the surface by a contact spring in the next step.
 
-use folio_geometry::{BlockSide, Contacts, Floor, Obstacle, Wall};
+use folio_geometry::{BlockSide, Contacts, Corner, Floor, Obstacle, Wall};
 use folio_kernels::{Real, Vec3Ops};
 
+use super::broad_phase::{PageBroadPhase, Reach};
 use super::error::BookError;
 use super::model::{ActiveView, RestView};
 use super::simulation::Book;
@@ -22,6 +23,7 @@ impl<T: Real> Book<T> {
         correction: &mut Correction<T>,
     ) -> Result<u32, BookError> {
         self.pushed.iter_mut().for_each(|p| *p = false);
+        self.spring_friction();
         self.terms.clear_contacts();
         let mut rounds = self.collide(contacts, self.settings.collision_rounds);
         // Projection and collision alternate: a node the projection moves into a block
@@ -105,15 +107,18 @@ impl<T: Real> Book<T> {
 
     /// Pushes `node` out of `obstacle`, adding the displacement over the time step to its
     /// velocity (an inelastic contact); the node is pinned in this step's projection and
-    /// held on the obstacle's plane by a contact spring in the next step.
+    /// held on the obstacle's plane by a contact spring in the next step. Page nodes feel
+    /// friction ([`crate::friction`]).
     fn push_node(&mut self, node: usize, obstacle: &impl Obstacle<T>) -> Option<T> {
         let before = self.state.x[node];
         let depth = obstacle.resolve(&mut self.state.x[node])?;
         self.pushed[node] = true;
         let k = self.settings.contact_stiffness * self.terms.mass(node);
-        self.terms.set_contact(node, obstacle.contact_plane(k));
+        let plane = obstacle.contact_plane(self.state.x[node], k);
+        self.terms.set_contact(node, plane);
         let h = self.settings.solver.time_step;
         self.state.v[node] += (self.state.x[node] - before) / h;
+        self.rub(node, plane.normal, depth / h);
         Some(depth)
     }
 
@@ -213,51 +218,88 @@ impl<T: Real> Book<T> {
         c
     }
 
-    /// The active page's part of [`Book::resolve_contacts`]: each wall in turn against the
-    /// free page nodes in node order, the columns the wall cannot reach skipped (the broad
-    /// phase, [`crate::broad_phase::PageBroadPhase`]).
+    /// Rounded corners of the blocks' clearance bands ([`Corner`]): the spine edge of each
+    /// block (the start of its midline) and each inner midline node.
+    fn page_corners(&self) -> usize {
+        2 * (self.terms.nodes.midline - 1)
+    }
+
+    /// Corner `k` (`0..page_corners()`): for `k = i` the start cap of the left block's
+    /// midline (`i = 0`) or the corner between its segments `i - 1` and `i`, then the same
+    /// on the right block; `None` where the band turns towards the page (it leaves no gap
+    /// there) or a segment is degenerate.
+    fn page_corner(&self, k: usize) -> Option<Corner<T>> {
+        let per_side = self.terms.nodes.midline - 1;
+        let first = if k < per_side { 0 } else { per_side };
+        match k % per_side {
+            0 => Corner::start(&self.page_wall(first)?),
+            i => Corner::new(&self.page_wall(first + i - 1)?, &self.page_wall(first + i)?),
+        }
+    }
+
+    /// The active page's part of [`Book::resolve_contacts`]: each wall, then each corner,
+    /// in turn against the free page nodes in node order, the columns the obstacle cannot
+    /// reach skipped (the broad phase, [`crate::broad_phase::PageBroadPhase`]).
     fn resolve_page_contacts(&mut self, c: &mut Contacts<T>) {
         let n = self.terms.nodes;
         // Taken out for the loop (no allocation: the default holds empty vectors).
         let mut broad = core::mem::take(&mut self.broad);
         broad.bound(n, &self.state.x);
         for w in 0..self.page_walls() {
-            let Some(wall) = self.page_wall(w) else {
-                continue;
-            };
-            c.bounds_tested += broad.select(&wall);
-            for j in 0..n.grid.nz {
-                for k in 0..broad.near().len() {
-                    let i = broad.near()[k];
-                    let node = n.page(i, j);
-                    let depth = self.push_node(node, &wall);
-                    if depth.is_some() {
-                        broad.include(i, self.state.x[node]);
-                    }
-                    c.record(depth);
-                }
+            if let Some(wall) = self.page_wall(w) {
+                self.push_page(&mut broad, &wall, c);
+            }
+        }
+        for k in 0..self.page_corners() {
+            if let Some(corner) = self.page_corner(k) {
+                self.push_page(&mut broad, &corner, c);
             }
         }
         self.broad = broad;
     }
 
+    /// Pushes the free page nodes that `obstacle` may reach out of it, row by row.
+    fn push_page<O: Obstacle<T> + Reach<T>>(
+        &mut self,
+        broad: &mut PageBroadPhase<T>,
+        obstacle: &O,
+        c: &mut Contacts<T>,
+    ) {
+        let n = self.terms.nodes;
+        c.bounds_tested += broad.select(obstacle);
+        for j in 0..n.grid.nz {
+            for k in 0..broad.near().len() {
+                let i = broad.near()[k];
+                let node = n.page(i, j);
+                let depth = self.push_node(node, obstacle);
+                if depth.is_some() {
+                    broad.include(i, self.state.x[node]);
+                }
+                c.record(depth);
+            }
+        }
+    }
+
     /// Deepest penetration of an active-page node (bound column excepted) into a block's
-    /// clearance band: block thickness plus half the active thickness (seed Sec. 3.4).
+    /// clearance band, its rounded corners included: block thickness plus half the active
+    /// thickness (seed Sec. 3.4).
     #[must_use]
     pub fn penetration(&self) -> Option<T> {
         self.page()?;
         let n = self.terms.nodes;
         let mut worst = T::ZERO;
-        for w in 0..self.page_walls() {
-            let Some(wall) = self.page_wall(w) else {
-                continue;
-            };
-            for node in n.free_page_nodes() {
-                if let Some(d) = wall.penetration(self.state.x[node]) {
-                    if d > worst {
-                        worst = d;
-                    }
-                }
+        let mut deepest = |depth: Option<T>| {
+            if let Some(d) = depth.filter(|&d| d > worst) {
+                worst = d;
+            }
+        };
+        for node in n.free_page_nodes() {
+            let p = self.state.x[node];
+            for w in 0..self.page_walls() {
+                deepest(self.page_wall(w).and_then(|wall| wall.penetration(p)));
+            }
+            for k in 0..self.page_corners() {
+                deepest(self.page_corner(k).and_then(|corner| corner.penetration(p)));
             }
         }
         Some(worst)

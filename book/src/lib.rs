@@ -32,6 +32,7 @@ mod collide;
 pub mod effects;
 pub mod error;
 mod flip;
+pub mod friction;
 mod grab;
 pub mod interaction;
 pub mod layout;

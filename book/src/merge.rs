@@ -20,6 +20,26 @@ impl<T: Real> Book<T> {
         }
     }
 
+    /// The block the active page lies over (the one it merges into): left when the mean X
+    /// of its fore-edge nodes is left of the midpoint of the blocks' binding nodes. `None`
+    /// without an active page.
+    #[must_use]
+    pub fn active_side(&self) -> Option<BlockSide> {
+        self.active.as_ref()?;
+        let n = self.terms.nodes;
+        let center =
+            (self.state.x[n.block(false, 0)].x() + self.state.x[n.block(true, 0)].x()) * T::HALF;
+        let mut edge = T::ZERO;
+        for j in 0..n.grid.nz {
+            edge += self.state.x[n.page(n.grid.nx - 1, j)].x();
+        }
+        Some(if edge < center * T::from_f64(n.grid.nz as f64) {
+            BlockSide::Left
+        } else {
+            BlockSide::Right
+        })
+    }
+
     /// Merges a released page whose nodes have all been slower than `merge_speed` for
     /// `merge_frames` steps into the block under its fore-edge (seed Sec. 4.1).
     pub(crate) fn merge_if_settled(&mut self) -> Option<BlockSide> {
@@ -40,17 +60,7 @@ impl<T: Real> Book<T> {
         if active.slow_frames < self.settings.merge_frames {
             return None;
         }
-        let center =
-            (self.state.x[n.block(false, 0)].x() + self.state.x[n.block(true, 0)].x()) * T::HALF;
-        let mut edge = T::ZERO;
-        for j in 0..n.grid.nz {
-            edge += self.state.x[n.page(n.grid.nx - 1, j)].x();
-        }
-        let side = if edge < center * T::from_f64(n.grid.nz as f64) {
-            BlockSide::Left
-        } else {
-            BlockSide::Right
-        };
+        let side = self.active_side()?;
         *self.counts.block_mut(side) += self.counts.active;
         self.counts.active = 0;
         self.active = None;

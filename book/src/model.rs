@@ -467,6 +467,14 @@ impl<T: Real> BookTerms<T> {
         }
     }
 
+    /// The plane of page node `node`'s contact spring (global index), while it is on.
+    #[must_use]
+    pub fn page_contact(&self, node: usize) -> Option<ContactPlane<T>> {
+        let po = self.nodes.page_offset();
+        let term = self.page_contacts.terms().get(node.checked_sub(po)?)?;
+        term.kernel.active.then_some(term.kernel.kernel)
+    }
+
     /// Holds `node` against `plane` in the next steps, until [`BookTerms::clear_contacts`].
     pub fn set_contact(&mut self, node: usize, plane: ContactPlane<T>) {
         let po = self.nodes.page_offset();

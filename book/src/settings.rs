@@ -142,6 +142,11 @@ pub struct BookSettings<T: Real> {
     /// (adhesion $\approx 10^{-9}\thinspace m g$) and $4 \cdot 10^4$ in `f32` ($\approx 0.006\thinspace m g$;
     /// at $10^6$ the f32 page sticks to its block and the page turn fails).
     pub contact_stiffness: T,
+    /// Coulomb friction coefficient $\mu$ of the active page on the blocks (dimensionless;
+    /// [`crate::friction`]): each contact cuts a page node's tangential speed by $\mu$ times
+    /// the normal speed it gave. Default 0, the seed's frictionless contact (friction does
+    /// not help a page settle; the module docs give the measurements).
+    pub contact_friction: T,
     /// Weight multiplier of the nodes a collision pushed in this step during the projection
     /// (they stay on the surface that pushed them).
     pub contact_pin_weight: T,
@@ -192,6 +197,7 @@ impl<T: Real> Default for BookSettings<T> {
             merge_frames: 10,
             constraint_tolerance: T::from_f64(1e-4),
             max_corrections: if T::EPSILON.to_f64() < 1e-10 { 5 } else { 3 },
+            contact_friction: T::ZERO,
             contact_pin_weight: T::from_f64(1e3),
             contact_stiffness: T::from_f64(if T::EPSILON.to_f64() < 1e-10 {
                 1e6
@@ -281,6 +287,7 @@ impl<T: Real> BookSettings<T> {
             ("gravity", self.gravity),
             ("air_drag", self.air_drag),
             ("contact_stiffness", self.contact_stiffness),
+            ("contact_friction", self.contact_friction),
         ];
         for (field, v) in self.weights.named().into_iter().chain(others) {
             check(non_negative(v), field, "finite and >= 0")?;

@@ -14,7 +14,7 @@ use folio_pages::cone::{ConePage, ConeSettings};
 use folio_pages::dog::DogPage;
 use folio_pages::spring::SpringPage;
 use folio_pages::touch::Touch;
-use folio_pages::{PageModel, PageStatus, TouchScript, frame_metrics};
+use folio_pages::{Gestures, PageModel, PageStatus, TouchScript, frame_metrics};
 use folio_tearing::sheet::TearingSheet;
 
 use folio_scene::events;
@@ -265,9 +265,9 @@ impl Shape<'_> {
     }
 }
 
-/// The input of a scene as a touch script, when it is not a book fixture: a touch fixture
-/// or the scene's timed events.
-fn touch_input(scene: &Scene) -> Result<Option<(TouchScript, bool)>, RunError> {
+/// The input of a scene as gestures, when it is not a book fixture: a touch fixture or the
+/// scene's timed events.
+fn touch_input(scene: &Scene) -> Result<Option<(Gestures, bool)>, RunError> {
     let input = scene.input.get_ref();
     if let Some(events) = &input.events {
         let frames = scene.frames.as_ref().map(|f| *f.get_ref());
@@ -282,7 +282,7 @@ fn touch_input(scene: &Scene) -> Result<Option<(TouchScript, bool)>, RunError> {
     let text = fixtures::text(name).ok_or_else(|| fail("unknown fixture"))?;
     match fixtures::kind(name) {
         Some(Kind::Touch) => Ok(Some((
-            TouchScript::parse(text).map_err(fail)?,
+            TouchScript::parse(text).map_err(fail)?.into(),
             name == "seed003-turn",
         ))),
         _ => Ok(None),
@@ -337,7 +337,7 @@ pub fn run(
                 (None, Some(o)) => o.as_mut(),
                 (None, None) => return Err(fail("no page model")),
             };
-            let inputs: Vec<String> = touch_problem(script.at(frame), frame, page)
+            let inputs: Vec<String> = touch_problem(scene, script.at(frame), frame, page)
                 .into_iter()
                 .collect();
             let t = Instant::now();
@@ -475,10 +475,18 @@ fn book_record(
 }
 
 /// What a touch input did wrong, if anything: a grab that missed the page, a refused drag.
-fn touch_problem(touch: Touch, frame: u32, page: &mut dyn PageModel<f64>) -> Option<String> {
+fn touch_problem(
+    scene: &Scene,
+    touch: Touch,
+    frame: u32,
+    page: &mut dyn PageModel<f64>,
+) -> Option<String> {
     let e = touch.apply(page).err()?;
     Some(match touch {
-        Touch::Grab { .. } => format!("grab at frame {frame} missed the page ({e})"),
+        Touch::Grab { .. } | Touch::Take { .. } => format!(
+            "grab at frame {frame} missed the page ({})",
+            events::refusal(scene, None, frame, &e)
+        ),
         Touch::Drag(_) => format!("drag at frame {frame} was refused ({e})"),
         _ => format!("input at frame {frame} was refused ({e})"),
     })

@@ -5,12 +5,13 @@
 
 use std::path::{Path, PathBuf};
 
-const SCENES: [&str; 7] = [
+const SCENES: [&str; 8] = [
     "page-turn",
     "peek",
     "bookmark-flip",
     "stack",
     "paperback",
+    "three-and-back",
     "cone-turn",
     "mass-spring-turn",
 ];

@@ -13,7 +13,9 @@ use folio_kernels::contact::ContactPlane;
 use folio_kernels::{Real, Vec3Ops, math};
 
 mod bounds;
+mod corner;
 pub use bounds::Bounds;
+pub use corner::Corner;
 
 /// A segment in the XY plane with the unit normal of its allowed side and a clearance.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -106,9 +108,9 @@ impl<T: Real> Wall<T> {
 pub trait Obstacle<T: Real> {
     /// Moves `p` out; returns the depth it had (`None` when it was clear).
     fn resolve(&self, p: &mut T::Vec3) -> Option<T>;
-    /// The supporting plane (constant along Z) at the clearance, with spring stiffness
-    /// `stiffness`.
-    fn contact_plane(&self, stiffness: T) -> ContactPlane<T>;
+    /// The supporting plane (constant along Z) at the clearance under the point `p` just
+    /// moved out ([`Obstacle::resolve`]), with spring stiffness `stiffness`.
+    fn contact_plane(&self, p: T::Vec3, stiffness: T) -> ContactPlane<T>;
 }
 
 impl<T: Real> Obstacle<T> for Wall<T> {
@@ -119,7 +121,7 @@ impl<T: Real> Obstacle<T> for Wall<T> {
         *p += self.normal * depth;
         Some(depth)
     }
-    fn contact_plane(&self, stiffness: T) -> ContactPlane<T> {
+    fn contact_plane(&self, _p: T::Vec3, stiffness: T) -> ContactPlane<T> {
         ContactPlane {
             point: self.a,
             normal: self.normal,
@@ -146,7 +148,7 @@ impl<T: Real> Obstacle<T> for Floor<T> {
             depth
         })
     }
-    fn contact_plane(&self, stiffness: T) -> ContactPlane<T> {
+    fn contact_plane(&self, _p: T::Vec3, stiffness: T) -> ContactPlane<T> {
         ContactPlane {
             point: T::Vec3::new(T::ZERO, self.level, T::ZERO),
             normal: T::Vec3::new(T::ZERO, T::ONE, T::ZERO),

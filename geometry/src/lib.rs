@@ -19,7 +19,7 @@ pub mod grid;
 pub mod mesh;
 pub mod sheet;
 
-pub use collision::{Bounds, Contacts, Floor, Obstacle, Wall};
+pub use collision::{Bounds, Contacts, Corner, Floor, Obstacle, Wall};
 pub use grid::{QuadGrid, Star};
 pub use mesh::BlockSide;
 pub use sheet::{SheetError, SheetMesh};

@@ -34,7 +34,7 @@
 //! The page has no thickness: [`super::mesh`] gives it the paper thickness it is asked for,
 //! with the back face oriented for rendering.
 
-use folio_geometry::QuadGrid;
+use folio_geometry::{BlockSide, QuadGrid};
 use folio_kernels::cone::{ConeCurl, LANES};
 use folio_kernels::{Real, Vec3Ops, math};
 
@@ -235,6 +235,21 @@ impl<T: Real> ConePage<T> {
         self.drive = Drive::Flip { frame: 0 };
     }
 
+    /// The side of the spine the page lies on, or lands on once released: left past the
+    /// vertical ($\rho > \pi/2$).
+    #[must_use]
+    pub fn side(&self) -> BlockSide {
+        let rho = match self.drive {
+            Drive::Landing { to, .. } => to.rho,
+            _ => self.params.rho,
+        };
+        if rho > T::from_f64(core::f64::consts::FRAC_PI_2) {
+            BlockSide::Left
+        } else {
+            BlockSide::Right
+        }
+    }
+
     /// Whether a flip or a landing is still running.
     #[must_use]
     pub fn is_animating(&self) -> bool {
@@ -396,6 +411,19 @@ impl<T: Real> PageModel<T> for ConePage<T> {
         let finger = self.params.curl().map_point(at[0], at[1]);
         self.drive = Drive::Held { at, finger };
         Ok(())
+    }
+
+    /// The one page again, wherever it lies ([`ConePage::side`]): a grab on the other
+    /// side, or of a stack, is refused.
+    fn grab_page(&mut self, side: BlockSide, pages: u32, at: [T; 2]) -> Result<(), PageError> {
+        super::one_page(pages)?;
+        if side != self.side() {
+            return Err(PageError::Gesture(super::GestureError::NoPage {
+                side,
+                model: "cone",
+            }));
+        }
+        self.grab(at)
     }
 
     fn drag(&mut self, finger: T::Vec3) -> Result<(), PageError> {

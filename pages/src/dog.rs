@@ -7,6 +7,11 @@
 //! its block is near $\lbrace(u, 0, v)\rbrace$ (the block top rises from the binding, so the inner
 //! strip of the page sits below $y = 0$).
 //!
+//! **Gestures.** Any number in sequence ([`super::Gestures`]): each grab takes the top page
+//! (or a stack) of the block on its side, or the released page again while it still lies
+//! there; the page frame is set anew at each grab, mirrored ($x = -u$) for a page taken on
+//! the left.
+//!
 //! **Input.** The grab holds the grab-ring node nearest the material point (the book lets
 //! the user hold only nodes one ring in from the border, seed Sec. 3.3); the finger drives
 //! that node's pull target shifted by the node's material offset from the grab point
@@ -20,7 +25,10 @@ use alloc::vec::Vec;
 use folio_geometry::{BlockSide, QuadGrid};
 use folio_kernels::{Real, Vec3Ops};
 
-use super::{PageError, PageModel, PageStatus, PageStep, check_finger, check_grab, material_point};
+use super::{
+    GestureError, PageError, PageModel, PageStatus, PageStep, check_finger, check_grab,
+    material_point,
+};
 use folio_book::{Book, BookSettings, BookStepReport, GrabOutcome};
 
 /// The DOG page (module docs).
@@ -108,13 +116,29 @@ impl<T: Real> PageModel<T> for DogPage<T> {
     }
 
     fn grab(&mut self, at: [T; 2]) -> Result<(), PageError> {
+        self.grab_page(BlockSide::Right, 1, at)
+    }
+
+    /// The top `pages` pages of the block on `side` (or the released page again, if it
+    /// still lies there); the page frame's origin is set anew from the page taken, and on
+    /// the left its X runs the other way ($x = -u$). A page released before that still moves
+    /// on the other side is not left behind: the grab is refused until it merges.
+    fn grab_page(&mut self, side: BlockSide, pages: u32, at: [T; 2]) -> Result<(), PageError> {
         check_grab(at, self.size())?;
-        let at64 = [at[0].to_f64(), at[1].to_f64()];
-        let GrabOutcome::Grabbed { node, .. } = self.book.grab_at(BlockSide::Right, at64, 1)?
-        else {
+        if pages == 0 {
             return Err(PageError::InvalidInput {
-                what: "grab (no page left in the right block)",
+                what: "pages to grab (zero)",
             });
+        }
+        if self.book.active_side().is_some_and(|lies| lies != side) {
+            return Err(PageError::Gesture(GestureError::Unsettled { side }));
+        }
+        let at64 = [at[0].to_f64(), at[1].to_f64()];
+        let GrabOutcome::Grabbed { node, .. } = self.book.grab_at(side, at64, pages)? else {
+            return Err(PageError::Gesture(GestureError::NoPage {
+                side,
+                model: "dog",
+            }));
         };
         let page = self.book.page().unwrap_or_default();
         let g = self.grid;
@@ -122,8 +146,13 @@ impl<T: Real> PageModel<T> for DogPage<T> {
             self.origin = T::Vec3::new(corner.x(), edge.y(), T::ZERO);
         }
         let (i, j) = g.coords(node);
+        let across = i as f64 * self.spacing[0] - at64[0];
         self.offset = T::Vec3::new(
-            T::from_f64(i as f64 * self.spacing[0] - at64[0]),
+            T::from_f64(if side == BlockSide::Left {
+                -across
+            } else {
+                across
+            }),
             T::ZERO,
             T::from_f64(j as f64 * self.spacing[1] - at64[1]),
         );

@@ -32,6 +32,7 @@ extern crate alloc;
 pub mod cone;
 #[cfg(feature = "dog")]
 pub mod dog;
+pub mod gestures;
 pub mod metrics;
 #[cfg(feature = "mass-spring")]
 pub mod spring;
@@ -44,6 +45,8 @@ use folio_kernels::{Real, Vec3Ops};
 #[cfg(feature = "dog")]
 use folio_book::BookError;
 
+pub use folio_geometry::BlockSide;
+pub use gestures::{Gesture, GestureError, Gestures};
 pub use metrics::{FrameMetrics, frame_metrics};
 pub use touch::TouchScript;
 
@@ -68,6 +71,9 @@ pub enum PageError {
     Book(BookError),
     /// The mesher refused the samples, the grid or the thickness.
     Mesh(MeshError),
+    /// The model cannot take this gesture (a grab where it has no page, a stack on a
+    /// one-page model, a page still moving elsewhere).
+    Gesture(GestureError),
 }
 
 #[cfg(feature = "dog")]
@@ -90,6 +96,7 @@ impl core::fmt::Display for PageError {
             #[cfg(feature = "dog")]
             Self::Book(e) => write!(f, "book: {e}"),
             Self::Mesh(e) => write!(f, "mesh: {e}"),
+            Self::Gesture(e) => write!(f, "{e}"),
         }
     }
 }
@@ -140,6 +147,24 @@ pub trait PageModel<T: Real> {
     /// [`PageError::InvalidInput`] for a non-finite point; nothing changes.
     fn drag(&mut self, finger: T::Vec3) -> Result<(), PageError>;
 
+    /// Takes hold of `pages` pages lying on `side` at the material point `at` (the gesture
+    /// of a [`Gestures`] sequence): the next page of that side, or, for a model of one page,
+    /// that page again. The default is [`PageModel::grab`] for one page on the right, where
+    /// every model's page starts, and refuses anything else.
+    ///
+    /// # Errors
+    /// As [`PageModel::grab`]; [`PageError::Gesture`] for a grab the model cannot take.
+    fn grab_page(&mut self, side: BlockSide, pages: u32, at: [T; 2]) -> Result<(), PageError> {
+        one_page(pages)?;
+        if side == BlockSide::Left {
+            return Err(PageError::Gesture(GestureError::NoPage {
+                side,
+                model: self.name(),
+            }));
+        }
+        self.grab(at)
+    }
+
     /// Lets go; the page finishes its turn (or falls back) on its own.
     fn release(&mut self);
 
@@ -154,6 +179,19 @@ pub trait PageModel<T: Real> {
     /// # Errors
     /// [`PageError::SampleCount`] unless `out.len() == grid.len()`.
     fn sample(&self, grid: QuadGrid, out: &mut [T::Vec3]) -> Result<(), PageError>;
+}
+
+/// `Ok` for one page, else [`GestureError::Stack`]: the cone and the mass-spring page model a
+/// single page.
+///
+/// # Errors
+/// [`PageError::Gesture`] for `pages != 1`.
+pub fn one_page(pages: u32) -> Result<(), PageError> {
+    if pages == 1 {
+        Ok(())
+    } else {
+        Err(PageError::Gesture(GestureError::Stack { pages }))
+    }
 }
 
 /// The material point $(u, v)$ of render-grid node `k` on a page of size `size`.

@@ -91,7 +91,7 @@ pub mod settings;
 pub mod sync;
 
 use alloc::vec::Vec;
-use folio_geometry::QuadGrid;
+use folio_geometry::{BlockSide, QuadGrid};
 use folio_kernels::{Real, Vec3Ops, math};
 
 pub use energy::SpringEnergy;
@@ -115,8 +115,12 @@ use network::zeros;
 struct Hold<T: Real> {
     /// Material point $(u, v)$.
     at: [T; 2],
-    /// Its rest position $P = (u, 0, v)$.
+    /// Its rest position $P = (u, 0, v)$, mirrored to $(-u, 0, v)$ for a page held on the
+    /// left.
     rest_point: T::Vec3,
+    /// The page was taken on the left: the gripped particles' rest positions are mirrored
+    /// across the spine, $(x, y, z) \to (-x, y, z)$.
+    mirrored: bool,
     /// The finger, once dragged.
     finger: Option<T::Vec3>,
 }
@@ -356,6 +360,7 @@ impl<T: Real> SpringPage<T> {
         }
         let fraction = T::from_f64(f64::from(s) / f64::from(n.max(1)));
         let rest = self.network.rest();
+        let mirrored = self.hold.is_some_and(|hold| hold.mirrored);
         for &k in &self.gripped {
             let k = k as usize;
             let (Some(xk), Some(vk), Some(&rk), Some(&start)) = (
@@ -365,6 +370,11 @@ impl<T: Real> SpringPage<T> {
                 self.previous.x.get(k),
             ) else {
                 continue;
+            };
+            let rk = if mirrored {
+                T::Vec3::new(-rk.x(), rk.y(), rk.z())
+            } else {
+                rk
             };
             match shift {
                 Some(d) => {
@@ -521,9 +531,37 @@ impl<T: Real> PageModel<T> for SpringPage<T> {
         self.hold = Some(Hold {
             at,
             rest_point: T::Vec3::new(at[0], T::ZERO, at[1]),
+            mirrored: false,
             finger: None,
         });
         self.reanalyse();
+        Ok(())
+    }
+
+    /// The one page again where it lies (left of the spine when its particles' mean X is
+    /// negative): on the left the grip's rest positions are mirrored across the spine, so
+    /// that a finger starting at $(-u, 0, v)$ holds the page where it lies. A grab on the
+    /// other side, or of a stack, is refused.
+    fn grab_page(&mut self, side: BlockSide, pages: u32, at: [T; 2]) -> Result<(), PageError> {
+        super::one_page(pages)?;
+        let n = T::from_f64(self.state.x.len().max(1) as f64);
+        let mean_x = self.state.x.iter().fold(T::ZERO, |m, p| m + p.x()) / n;
+        let lies = if mean_x < T::ZERO {
+            BlockSide::Left
+        } else {
+            BlockSide::Right
+        };
+        if side != lies {
+            return Err(PageError::Gesture(super::GestureError::NoPage {
+                side,
+                model: "mass-spring",
+            }));
+        }
+        self.grab(at)?;
+        if let Some(hold) = self.hold.as_mut().filter(|_| side == BlockSide::Left) {
+            hold.mirrored = true;
+            hold.rest_point = T::Vec3::new(-at[0], T::ZERO, at[1]);
+        }
         Ok(())
     }
 

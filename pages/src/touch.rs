@@ -57,6 +57,18 @@ pub enum Touch {
         /// Finger position.
         finger: [f64; 3],
     },
+    /// Grab `pages` pages lying on `side` at `at` with the finger at `finger` (a gesture of a
+    /// [`super::Gestures`] sequence; [`super::PageModel::grab_page`]).
+    Take {
+        /// The side the page lies on.
+        side: folio_geometry::BlockSide,
+        /// Pages taken at once.
+        pages: u32,
+        /// Material point.
+        at: [f64; 2],
+        /// Finger position.
+        finger: [f64; 3],
+    },
     /// Move the finger.
     Drag([f64; 3]),
     /// Let go.
@@ -69,13 +81,23 @@ impl Touch {
     /// Feeds this input to `model` (grab, then drag to the finger; drag; release).
     ///
     /// # Errors
-    /// As [`super::PageModel::grab`] and [`super::PageModel::drag`].
+    /// As [`super::PageModel::grab`], [`super::PageModel::grab_page`] and
+    /// [`super::PageModel::drag`].
     pub fn apply<T: Real>(self, model: &mut dyn PageModel<T>) -> Result<(), PageError> {
         let point =
             |p: [f64; 3]| T::Vec3::new(T::from_f64(p[0]), T::from_f64(p[1]), T::from_f64(p[2]));
         match self {
             Self::Grab { at, finger } => {
                 model.grab([T::from_f64(at[0]), T::from_f64(at[1])])?;
+                model.drag(point(finger))
+            }
+            Self::Take {
+                side,
+                pages,
+                at,
+                finger,
+            } => {
+                model.grab_page(side, pages, [T::from_f64(at[0]), T::from_f64(at[1])])?;
                 model.drag(point(finger))
             }
             Self::Drag(finger) => model.drag(point(finger)),

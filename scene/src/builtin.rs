@@ -1,7 +1,7 @@
 //! The built-in scenes (`scenes/*.toml`, embedded in the binary).
 
 /// Name and text of every built-in scene; the first is the default.
-pub const SCENES: [(&str, &str); 11] = [
+pub const SCENES: [(&str, &str); 12] = [
     ("page-turn", include_str!("../../scenes/page-turn.toml")),
     ("peek", include_str!("../../scenes/peek.toml")),
     (
@@ -10,6 +10,10 @@ pub const SCENES: [(&str, &str); 11] = [
     ),
     ("stack", include_str!("../../scenes/stack.toml")),
     ("paperback", include_str!("../../scenes/paperback.toml")),
+    (
+        "three-and-back",
+        include_str!("../../scenes/three-and-back.toml"),
+    ),
     ("cone-turn", include_str!("../../scenes/cone-turn.toml")),
     (
         "mass-spring-turn",

@@ -201,7 +201,8 @@ pub struct InputSection {
     pub fixture: Option<Spanned<String>>,
     /// Pages every grab of a book fixture takes (a stack; default: the fixture's own).
     pub pages: Option<Spanned<u32>>,
-    /// Timed events: one gesture (a grab, drags, a release) in page coordinates.
+    /// Timed events: gestures in sequence (a grab, drags, a release, the next grab) in page
+    /// coordinates.
     pub events: Option<Spanned<Vec<Spanned<EventSpec>>>>,
     /// The hands holding a sheet (`model = "sheet"` only).
     pub hands: Option<Spanned<Vec<Spanned<HandSpec>>>>,
@@ -248,8 +249,12 @@ pub struct EventSpec {
     /// The same in seconds (rounded to the nearest frame).
     pub time: Option<Spanned<f64>>,
     /// Grab the page at material point `[u, v]` (page units: across from the spine, along
-    /// it) of the right page.
+    /// it) of the page on `side`.
     pub grab: Option<Spanned<[f64; 2]>>,
+    /// The side of the spine a grab takes its page from (default `"right"`; grabs only).
+    pub side: Option<Spanned<crate::events::Side>>,
+    /// Pages a grab takes at once, a stack (default 1; grabs only, DOG book only).
+    pub pages: Option<Spanned<u32>>,
     /// The finger reaches `[x, y, z]` (page frame: x across the book from the spine, y up,
     /// z along the spine) at this frame, moving in a straight line from where it was.
     pub drag: Option<Spanned<[f64; 3]>>,
@@ -697,7 +702,7 @@ impl Scene {
                 if let Some(pages) = &input.pages {
                     return bad(pages.span(), "input.pages is for book fixtures only");
                 }
-                return crate::events::check(events, self.page_size())
+                return crate::events::check(events, self.page_size(), model)
                     .map_err(|(span, message)| SceneError::at(text, Some(span), message));
             }
             _ => {

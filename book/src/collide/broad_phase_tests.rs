@@ -19,8 +19,8 @@ fn held<T: Real>() -> Book<T> {
     b
 }
 
-/// The pass before the broad phase: the blocks' contacts, then every page wall against
-/// every free page node in node order.
+/// The pass before the broad phase: the blocks' contacts, then every page wall and then
+/// every corner against every free page node in node order.
 fn brute_force<T: Real>(b: &mut Book<T>) -> Contacts<T> {
     let mut c = Contacts::default();
     if b.settings.effects.blocks {
@@ -33,6 +33,14 @@ fn brute_force<T: Real>(b: &mut Book<T>) -> Contacts<T> {
         };
         for node in n.free_page_nodes() {
             c.record(b.push_node(node, &wall));
+        }
+    }
+    for k in 0..b.page_corners() {
+        let Some(corner) = b.page_corner(k) else {
+            continue;
+        };
+        for node in n.free_page_nodes() {
+            c.record(b.push_node(node, &corner));
         }
     }
     c

@@ -4,5 +4,6 @@
 //! nothing panicked.
 
 mod cli;
+mod gestures;
 mod pages;
 mod tearing;
