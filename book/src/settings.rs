@@ -105,6 +105,27 @@ pub struct BookSettings<T: Real> {
     /// linearization; the line search then cuts the step to a sliver every frame and the
     /// page crawls further and further behind. Default 1 (two thirds of a grid cell).
     pub pull_reach: T,
+    /// The grip (dimensionless): the grab's pull never pulls harder than the tension that
+    /// stretches a grid edge of the page by this much; a finger that pulls harder slips
+    /// (see [`crate::terms::Grip`] and [`crate::BookTerms::grip_force`]). Default 0.0075,
+    /// just above the default pull's largest force, so the default grab never slips.
+    /// Without it the pull's force is $2 w_{\mathrm{pos}} r$ on the leash $r$ and grows
+    /// with the pull weight: drags of the page turn stretched the page by 18 % at
+    /// $w_{\mathrm{pos}} = 10^4$, 33 % at $10^6$ and 4280 % at $10^9$; with a grip of
+    /// 0.02, 3.5 % to 7.6 % at the same weights, and random gestures still found 12 %.
+    pub grip_strain: T,
+    /// The fastest turn of the held node about the binding (radians per second): the leash
+    /// of one step is also at most this turn, $\omega h \rho$ at the node's distance
+    /// $\rho$ from the binding along the flat page. One Newton iteration per step
+    /// linearizes the soft isometry (eq. 13), and an edge turned by $\theta$ along its
+    /// tangent grows by $\approx\theta^2/2$; a node held one cell from the spine and led on
+    /// the plain leash turned 0.3 rad per step and stretched the page by over 10 %.
+    /// Default 4 (0.067 rad per step at 60 steps per second): the default grab near the
+    /// fore-edge, 10.5 units from the binding, gets a leash of 0.7, and a smoothstep half
+    /// turn in 100 steps (2.8 rad/s at its fastest) still lands on the left in `f32`; at 3
+    /// it fell back to the right (`capi/tests/page_turn.rs`), and at 6 random gestures within
+    /// the weight ranges stretched the page by 13 %.
+    pub pull_turn_rate: T,
     /// Tent height over the binding as a fraction of the grabbed node's distance from the
     /// binding (see [`crate::interaction::Tent`]).
     pub tent_height: T,
@@ -187,6 +208,8 @@ impl<T: Real> Default for BookSettings<T> {
             cover_mass: T::from_f64(5.0),
             min_block_mass: T::HALF,
             pull_reach: T::ONE,
+            grip_strain: T::from_f64(0.0075),
+            pull_turn_rate: T::from_f64(4.0),
             tent_height: T::from_f64(0.6),
             merge_speed: T::from_f64(0.5),
             merge_frames: 10,
@@ -291,6 +314,8 @@ impl<T: Real> BookSettings<T> {
             ("min_block_mass", self.min_block_mass),
             ("merge_speed", self.merge_speed),
             ("pull_reach", self.pull_reach),
+            ("grip_strain", self.grip_strain),
+            ("pull_turn_rate", self.pull_turn_rate),
             ("settle_tolerance", self.settle_tolerance),
             ("constraint_tolerance", self.constraint_tolerance),
         ] {

@@ -1,13 +1,13 @@
 //! The book's own term shapes over `folio-kernels`: DOG stars with the flat-star Jacobian
 //! remedy, the binding-midpoint fix restricted to the plane with the binding edge kept
-//! level, and switchable one-node potentials (the grab pull, the contact springs).
+//! level, the grab's pull with a bounded force, and switchable one-node potentials (the
+//! grab pull, the contact springs).
 
 use folio_kernels::contact::ContactPlane;
 use folio_kernels::dog::{DogBoundaryStar, DogInnerStar, FlatStarRemedy};
 use folio_kernels::fix::Fix;
-use folio_kernels::positional::Positional;
 use folio_kernels::term::{Blocks, NodeVecs, zero_blocks, zero_vecs};
-use folio_kernels::{Constraint, Potential, Real, Vec3Ops};
+use folio_kernels::{Constraint, Mat3Ops, Potential, Real, Vec3Ops, math};
 
 /// The inner-star DOG constraints (seed `000_…` Sec. 3.2, three rows on
 /// `[p0, xf, yf, xb, yb]`) with the Jacobian of [`FlatStarRemedy`]: on a flat star the exact
@@ -89,10 +89,68 @@ pub struct Switched<P> {
     pub active: bool,
 }
 
-/// The positional objective of seed `000_…` eq. 14, $\lVert x_i - p\rVert^2$, on for the
-/// grabbed node only; declared on every node a user may grab (the ring one in from the page
-/// border). Its `target` follows the drag.
-pub type Pull<T> = Switched<Positional<T>>;
+/// The grab's pull, seed `000_…` eq. 14 with a bounded force: the held node $x_i$ pulled
+/// towards the target $p$, $d = x_i - p$,
+/// $$V = \begin{cases}\lVert d\rVert^2 & \lVert d\rVert \le \rho\\
+///   2\rho\lVert d\rVert - \rho^2 & \text{beyond,}\end{cases}\qquad
+///   \nabla V = 2\,d\,\min\!\left(1, \frac{\rho}{\lVert d\rVert}\right),$$
+/// $\nabla^2 V = 2I$ inside the radius $\rho$ and
+/// $\frac{2\rho}{\lVert d\rVert}(I - \hat d \hat d^{\mathsf T})$ beyond (positive
+/// semidefinite). Weighted by $w_{\mathrm{pos}}$, the force is at most $2 w \rho$: the
+/// book sets $\rho$ so that this is the grip of [`crate::BookSettings::grip_strain`], and a
+/// finger that pulls harder slips instead of stretching the paper. With $\rho$ at least
+/// the leash ([`crate::BookSettings::pull_reach`]) it is the seed's quadratic.
+/// Units: length².
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Grip<T: Real> {
+    /// $p$, page units.
+    pub target: T::Vec3,
+    /// $\rho$, page units (positive; infinite for the plain quadratic).
+    pub radius: T,
+}
+
+impl<T: Real> Grip<T> {
+    /// $d$, $\lVert d\rVert$ and whether $x$ lies beyond the radius.
+    #[inline]
+    fn offset(&self, x: &NodeVecs<T, 1>) -> (T::Vec3, T, bool) {
+        let d = x[0] - self.target;
+        let len = math::length::<T>(d);
+        (d, len, len > self.radius)
+    }
+}
+
+impl<T: Real> Potential<T, 1> for Grip<T> {
+    fn value(&self, x: &NodeVecs<T, 1>) -> T {
+        let (d, len, beyond) = self.offset(x);
+        if beyond {
+            T::TWO * self.radius * len - self.radius * self.radius
+        } else {
+            d.dot(d)
+        }
+    }
+    fn gradient(&self, x: &NodeVecs<T, 1>) -> NodeVecs<T, 1> {
+        let (d, len, beyond) = self.offset(x);
+        if beyond {
+            [d * (T::TWO * self.radius / len)]
+        } else {
+            [d * T::TWO]
+        }
+    }
+    fn hessian(&self, x: &NodeVecs<T, 1>) -> Blocks<T, 1> {
+        let (d, len, beyond) = self.offset(x);
+        if beyond {
+            let u = d / len;
+            let across = T::Mat3::IDENTITY - T::Mat3::outer(u, u);
+            [[across * (T::TWO * self.radius / len)]]
+        } else {
+            [[T::Mat3::IDENTITY * T::TWO]]
+        }
+    }
+}
+
+/// The grab pull ([`Grip`]), on for the grabbed node only; declared on every node a user
+/// may grab (the ring one in from the page border). Its `target` follows the drag.
+pub type Pull<T> = Switched<Grip<T>>;
 
 /// A contact found by the collision handling of one step, held as a spring in the next
 /// (see [`ContactPlane`]); declared on every page node.
@@ -120,5 +178,47 @@ impl<T: Real, P: Potential<T, 1>> Potential<T, 1> for Switched<P> {
         } else {
             zero_blocks::<T, 1>()
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Grip;
+    use folio_kernels::{Potential, Real};
+
+    type DVec3 = <f64 as Real>::Vec3;
+
+    /// Central differences of the value and the gradient match the gradient and the
+    /// Hessian inside and beyond the radius, and the force never exceeds $2\rho$.
+    #[test]
+    fn the_grip_is_the_quadratic_inside_and_bounded_beyond() {
+        let grip = Grip::<f64> {
+            target: DVec3::new(1.0, -2.0, 0.5),
+            radius: 0.3,
+        };
+        let h = 1e-6;
+        for x in [
+            DVec3::new(1.1, -2.05, 0.52),
+            DVec3::new(3.0, 1.0, -2.0),
+            DVec3::new(1.0, -2.0, 0.9),
+        ] {
+            let g = grip.gradient(&[x])[0];
+            let hess = grip.hessian(&[x])[0][0];
+            assert!(g.length() <= 2.0 * grip.radius + 1e-12, "{g}");
+            for k in 0..3 {
+                let e = DVec3::AXES[k] * h;
+                let dv = (grip.value(&[x + e]) - grip.value(&[x - e])) / (2.0 * h);
+                assert!((dv - g[k]).abs() < 1e-6, "{x} {k}: {dv} vs {}", g[k]);
+                let dg = (grip.gradient(&[x + e])[0] - grip.gradient(&[x - e])[0]) / (2.0 * h);
+                assert!(
+                    (dg - hess.col(k)).length() < 1e-5,
+                    "{x} {k}: {dg} vs {}",
+                    hess.col(k)
+                );
+            }
+        }
+        // Inside the radius it is the seed's quadratic.
+        let x = DVec3::new(1.1, -2.0, 0.5);
+        assert!((grip.value(&[x]) - 0.01).abs() < 1e-12);
     }
 }
