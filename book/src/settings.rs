@@ -8,7 +8,8 @@ use super::effects::Effects;
 use folio_solvers::settings::Settings;
 
 /// Weights of the potentials of seed `000_…` eq. 9-14 at the seed's 11x8 grid
-/// (dimensionless multipliers of the unweighted kernels).
+/// (dimensionless multipliers of the unweighted kernels), each in its range of
+/// [`WEIGHT_RANGES`].
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
@@ -27,6 +28,41 @@ pub struct Weights<T: Real> {
     /// $w_{\mathrm{pos}}$, the grab pull (400).
     pub pull: T,
 }
+
+/// The range each weight is documented and validated for (field path, lowest, highest,
+/// the requirement as [`crate::BookError::InvalidSetting`] states it), in field order; the
+/// defaults lie inside. Scenes were allowed [0, 1e9]; inside the ranges below, random
+/// gestures (grabs anywhere, drags beyond the book, flicks, releases) keep the page within
+/// 10 % stretch for any combination of weights (`tests/tests/bounded_book.rs`, and the
+/// box's 32 corners in `tests/tests/hard_cases/book.rs`). Outside them the model cannot
+/// hold that bound, measured with a one-second page turn before the ranges were narrowed
+/// (other weights at their defaults):
+/// - `bend_page`: the DOG Laplacian (eq. 9) divides by the rest lengths, so its energy on
+///   a bent page falls with the fourth power of the edges' length, and bending much
+///   stiffer than the soft isometry shrinks a bent page instead of flattening it (max
+///   stretch 10 % at 1000, 27 % at $10^4$, 22 % at $10^9$; at 490 with `iso_page` 3400,
+///   11 % one step after the grab); with almost no bending the page kinks where it is held
+///   (40 % at 10).
+/// - `iso_page`: the soft isometry (eq. 13) is the only term that holds the edges'
+///   lengths (the DOG constraints are angle conditions): at 0 the page shrinks freely and
+///   never comes to rest (50 % stretch, no merge); at 300, 17 %; at 1000 with `bend_page`
+///   300, 16 %. Far above it the one Newton step per frame locks and the page no longer
+///   lifts ($10^6$).
+/// - `bend_blocks`, `glue`: a block midline with little bending flaps and flings the page
+///   (`bend_blocks` 1: 14000 %; 20 with `glue` 6000: 16 %); a glue far above the default
+///   tips the blocks over (`glue` $10^9$: 118 %).
+/// - `pull`: its force is bounded by the grip ([`BookSettings::grip_strain`]; without it
+///   the page stretched 4280 % at $10^9$), but its stiffness is not: a pull of $10^8$ holds
+///   the node as a pin, and one Newton step per frame then stretches the page around it
+///   (15 %); with no pull at all a grab holds nothing and the page springs off the block
+///   (19 % at 0 with `bend_page` 80, `bend_blocks` 400, `glue` 300, `iso_page` 8000).
+pub const WEIGHT_RANGES: [(&str, f64, f64, &str); 5] = [
+    ("weights.bend_page", 30.0, 200.0, "in [30, 200]"),
+    ("weights.bend_blocks", 100.0, 1e4, "in [100, 1e4]"),
+    ("weights.glue", 100.0, 3000.0, "in [100, 3000]"),
+    ("weights.iso_page", 3000.0, 3e4, "in [3000, 3e4]"),
+    ("weights.pull", 50.0, 2000.0, "in [50, 2000]"),
+];
 
 impl<T: Real> Weights<T> {
     /// Every weight with its path from [`BookSettings`] (`"weights.glue"`), in field order.
@@ -305,8 +341,14 @@ impl<T: Real> BookSettings<T> {
             ("air_drag", self.air_drag),
             ("contact_stiffness", self.contact_stiffness),
         ];
-        for (field, v) in self.weights.named().into_iter().chain(others) {
+        for (field, v) in others {
             check(non_negative(v), field, "finite and >= 0")?;
+        }
+        for ((field, v), (_, lo, hi, requirement)) in
+            self.weights.named().into_iter().zip(WEIGHT_RANGES)
+        {
+            let v = v.to_f64();
+            check(v.is_finite() && v >= lo && v <= hi, field, requirement)?;
         }
         for (field, v) in [
             ("page_mass", self.page_mass),

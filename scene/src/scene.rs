@@ -126,8 +126,8 @@ pub enum ModelKind {
     Sheet,
 }
 
-/// The largest weight a scene may give (`[weights]`): larger ones only stiffen the page
-/// into a badly conditioned step.
+/// No weight of a scene (`[weights]`) may exceed this; each has its own, narrower range
+/// ([`folio_book::WEIGHT_RANGES`]), which the scene checks.
 pub const MAX_WEIGHT: f64 = 1e9;
 
 /// Every effect a scene may name.
@@ -534,10 +534,16 @@ impl Scene {
             if model != ModelKind::Dog {
                 return bad(w.span(), "[weights] is for model = \"dog\" only");
             }
-            for (key, v) in w.get_ref().named() {
-                if !(v.is_finite() && (0.0..=MAX_WEIGHT).contains(&v)) {
+            let ranges = folio_book::WEIGHT_RANGES;
+            for ((key, v), (_, lo, hi, requirement)) in w.get_ref().named().into_iter().zip(ranges)
+            {
+                if !(v.is_finite() && (lo..=hi).contains(&v)) {
                     let span = self.keys.span(key).unwrap_or_else(|| w.span());
-                    return bad(span, "a weight must be in [0, 1e9]");
+                    let message = format!(
+                        "{key} must be {requirement} (the range the DOG book holds its page \
+                         within 10 % stretch; see folio_book::WEIGHT_RANGES)"
+                    );
+                    return bad(span, &message);
                 }
             }
         }
