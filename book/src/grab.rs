@@ -345,8 +345,14 @@ impl<T: Real> Book<T> {
         }
     }
 
-    /// Sets the pull of the held node to its target on the leash of length
-    /// [`BookSettings::pull_reach`]: $p = x_i + (t - x_i)\min(1, r / \lVert t - x_i\rVert)$.
+    /// Sets the pull of the held node to its target on the leash
+    /// $r = \min(r_{max}, \omega h \rho)$, [`BookSettings::pull_reach`] $r_{max}$ or the
+    /// turn [`BookSettings::pull_turn_rate`] $\omega$ allows in one step $h$ at the held
+    /// node's distance $\rho$ from the binding along the flat page:
+    /// $p = x_i + (t - x_i)\min(1, r / \lVert t - x_i\rVert)$.
+    ///
+    /// [`BookSettings::pull_reach`]: crate::BookSettings::pull_reach
+    /// [`BookSettings::pull_turn_rate`]: crate::BookSettings::pull_turn_rate
     pub(crate) fn leash_pull(&mut self) {
         let Some(hold) = self.active.and_then(|a| a.hold) else {
             return;
@@ -354,7 +360,13 @@ impl<T: Real> Book<T> {
         let x = self.state.x[hold.node];
         let d = hold.target - x;
         let len = math::length::<T>(d);
-        let reach = self.settings.pull_reach;
+        let s = &self.settings;
+        let turn = s.pull_turn_rate * s.solver.time_step * hold.tent.reach;
+        let reach = if turn < s.pull_reach {
+            turn
+        } else {
+            s.pull_reach
+        };
         let p = if len > reach {
             x + d * (reach / len)
         } else {

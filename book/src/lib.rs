@@ -51,7 +51,7 @@ pub use interaction::{Ray, Tent};
 pub use layout::{BlockSide, BookLayout, BookParams, LayoutError};
 pub use model::{BookTerms, Family, NodeMap};
 pub use script::{Action, Event, Script, ScriptError};
-pub use settings::{BookSettings, Weights};
+pub use settings::{BookSettings, WEIGHT_RANGES, Weights};
 pub use simulation::{
     Book, BookStepReport, BookmarkOutcome, DragOutcome, GrabOutcome, InputOutcome, PageCounts,
     Phase,

@@ -19,12 +19,11 @@ use folio_kernels::glue::Glue;
 use folio_kernels::gravity::Gravity;
 use folio_kernels::iso2d::Iso2d;
 use folio_kernels::iso3d::Iso3d;
-use folio_kernels::positional::Positional;
 use folio_kernels::{KernelError, Real, Vec3Ops};
 
 use super::effects::Effects;
 use super::settings::BookSettings;
-use super::terms::{Contact, DogBoundary, DogInner, PlanarFix, Pull};
+use super::terms::{Contact, DogBoundary, DogInner, Grip, PlanarFix, Pull};
 use folio_solvers::model::{ConstraintSet, Model, PotentialSet, TermVisitor};
 
 /// Where each kind of node lives in the state (module docs).
@@ -138,9 +137,12 @@ pub struct BookTerms<T: Real> {
     page_gravity: PotentialSet<T, Gravity<T>, 1>,
     pull: PotentialSet<T, Pull<T>, 1>,
     pull_nodes: Vec<usize>,
-    /// The weights of the page's bending, iso3D and pull for one page (see
+    /// The weights of the page's bending, iso3D and pull, and its grip, for one page (see
     /// [`BookTerms::set_stack`]).
-    page_weights: [T; 3],
+    page_weights: [T; 4],
+    /// The largest force of the pull (page masses times page units per s²; see
+    /// [`BookTerms::grip_force`]), for the active stack.
+    grip: T,
     /// One per block and cover node, in node order.
     block_contacts: PotentialSet<T, Contact<T>, 1>,
     /// One per page node, in grid order.
@@ -202,7 +204,9 @@ impl<T: Real> BookTerms<T> {
                 w.bend_page,
                 w.iso_page * T::from_f64(settings.iso_scale()),
                 w.pull,
+                Self::grip_force(settings),
             ],
+            grip: Self::grip_force(settings),
             block_contacts: PotentialSet::new(T::ONE),
             page_contacts: PotentialSet::new(T::ONE),
         }
@@ -315,12 +319,31 @@ impl<T: Real> BookTerms<T> {
         Ok(())
     }
 
+    /// The grip of one page: the pull's largest force, the tension that stretches one grid
+    /// edge by [`BookSettings::grip_strain`] $\varepsilon_g$. An iso3D edge of rest length
+    /// $\ell_0$ stretched by $\varepsilon$ pulls with $\partial_\ell\, w(\ell^2 -
+    /// \ell_0^2)^2 \approx 8 w \ell_0^3 \varepsilon$ (eq. 13), so
+    /// $F_g = 8\, w_{\mathrm{iso}}\, \ell_{min}^3\, \varepsilon_g$ with the grid's weight
+    /// (see [`BookSettings::iso_scale`]) and its shorter spacing. Defaults: $8 \cdot 4000
+    /// \cdot 1.5^3 \cdot 0.0075 = 810$, above the default pull's largest force on the
+    /// leash, $2 w_{\mathrm{pos}} r = 800$, so the default grab never slips.
+    #[must_use]
+    pub fn grip_force(settings: &BookSettings<T>) -> T {
+        let [across, along] = settings.grid_spacing();
+        let l = across.min(along);
+        let iso = settings.weights.iso_page.to_f64() * settings.iso_scale();
+        T::from_f64(8.0 * iso * l * l * l) * settings.grip_strain
+    }
+
     /// The grab pulls (eq. 14), one per node of the page's second ring, all off.
     fn push_pulls(&mut self) -> Result<(), KernelError> {
         let po = self.nodes.page_offset();
         for k in self.nodes.grid.second_ring() {
             let pull = Pull {
-                kernel: Positional::new(T::Vec3::ZERO)?,
+                kernel: Grip {
+                    target: T::Vec3::ZERO,
+                    radius: T::MAX,
+                },
                 active: false,
             };
             self.pull.push(pull, as_u32([po + k]));
@@ -423,13 +446,15 @@ impl<T: Real> BookTerms<T> {
     /// times as stiffly, and weighs $k$ times as much ([`BookTerms::set_masses`]): every
     /// term of the page's energy scales with $k$ and the stack moves as one page does
     /// under the same grab. With the pull left at one page's weight, a 45-page stack sags
-    /// out of the grab under 45 pages of gravity and falls back.
+    /// out of the grab under 45 pages of gravity and falls back. The grip, a force the
+    /// stack's stretch stiffness bounds, scales with it.
     pub fn set_stack(&mut self, pages: T) {
-        let [bend, iso, pull] = self.page_weights.map(|w| w * pages);
+        let [bend, iso, pull, grip] = self.page_weights.map(|w| w * pages);
         self.bend_inner.weight = bend;
         self.bend_boundary.weight = bend;
         self.iso3d.weight = iso;
         self.pull.weight = pull;
+        self.grip = grip;
     }
 
     /// Sets the binding parameter $q$ of the bound column (clamped to `[0, 1]`).
@@ -446,13 +471,20 @@ impl<T: Real> BookTerms<T> {
         &self.pull_nodes
     }
 
-    /// Holds `node` at `target` (or releases every node with `None`).
+    /// Holds `node` at `target` (or releases every node with `None`), with the grip's
+    /// radius $\rho = F_g / (2 w_{\mathrm{pos}})$ ([`Grip`], [`BookTerms::grip_force`]).
     pub fn set_pull(&mut self, held: Option<(usize, T::Vec3)>) {
+        let w = self.pull.weight;
+        let radius = if w > T::ZERO {
+            self.grip / (T::TWO * w)
+        } else {
+            T::MAX
+        };
         for (kernel, &node) in self.pull.kernels_mut().zip(&self.pull_nodes) {
             match held {
                 Some((h, target)) if h == node => {
                     kernel.active = true;
-                    kernel.kernel.target = target;
+                    kernel.kernel = Grip { target, radius };
                 }
                 _ => kernel.active = false,
             }

@@ -8,7 +8,8 @@ use super::effects::Effects;
 use folio_solvers::settings::Settings;
 
 /// Weights of the potentials of seed `000_…` eq. 9-14 at the seed's 11x8 grid
-/// (dimensionless multipliers of the unweighted kernels).
+/// (dimensionless multipliers of the unweighted kernels), each in its range of
+/// [`WEIGHT_RANGES`].
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
@@ -27,6 +28,41 @@ pub struct Weights<T: Real> {
     /// $w_{\mathrm{pos}}$, the grab pull (400).
     pub pull: T,
 }
+
+/// The range each weight is documented and validated for (field path, lowest, highest,
+/// the requirement as [`crate::BookError::InvalidSetting`] states it), in field order; the
+/// defaults lie inside. Scenes were allowed [0, 1e9]; inside the ranges below, random
+/// gestures (grabs anywhere, drags beyond the book, flicks, releases) keep the page within
+/// 10 % stretch for any combination of weights (`tests/tests/bounded_book.rs`, and the
+/// box's 32 corners in `tests/tests/hard_cases/book.rs`). Outside them the model cannot
+/// hold that bound, measured with a one-second page turn before the ranges were narrowed
+/// (other weights at their defaults):
+/// - `bend_page`: the DOG Laplacian (eq. 9) divides by the rest lengths, so its energy on
+///   a bent page falls with the fourth power of the edges' length, and bending much
+///   stiffer than the soft isometry shrinks a bent page instead of flattening it (max
+///   stretch 10 % at 1000, 27 % at $10^4$, 22 % at $10^9$; at 490 with `iso_page` 3400,
+///   11 % one step after the grab); with almost no bending the page kinks where it is held
+///   (40 % at 10).
+/// - `iso_page`: the soft isometry (eq. 13) is the only term that holds the edges'
+///   lengths (the DOG constraints are angle conditions): at 0 the page shrinks freely and
+///   never comes to rest (50 % stretch, no merge); at 300, 17 %; at 1000 with `bend_page`
+///   300, 16 %. Far above it the one Newton step per frame locks and the page no longer
+///   lifts ($10^6$).
+/// - `bend_blocks`, `glue`: a block midline with little bending flaps and flings the page
+///   (`bend_blocks` 1: 14000 %; 20 with `glue` 6000: 16 %); a glue far above the default
+///   tips the blocks over (`glue` $10^9$: 118 %).
+/// - `pull`: its force is bounded by the grip ([`BookSettings::grip_strain`]; without it
+///   the page stretched 4280 % at $10^9$), but its stiffness is not: a pull of $10^8$ holds
+///   the node as a pin, and one Newton step per frame then stretches the page around it
+///   (15 %); with no pull at all a grab holds nothing and the page springs off the block
+///   (19 % at 0 with `bend_page` 80, `bend_blocks` 400, `glue` 300, `iso_page` 8000).
+pub const WEIGHT_RANGES: [(&str, f64, f64, &str); 5] = [
+    ("weights.bend_page", 30.0, 200.0, "in [30, 200]"),
+    ("weights.bend_blocks", 100.0, 1e4, "in [100, 1e4]"),
+    ("weights.glue", 100.0, 3000.0, "in [100, 3000]"),
+    ("weights.iso_page", 3000.0, 3e4, "in [3000, 3e4]"),
+    ("weights.pull", 50.0, 2000.0, "in [50, 2000]"),
+];
 
 impl<T: Real> Weights<T> {
     /// Every weight with its path from [`BookSettings`] (`"weights.glue"`), in field order.
@@ -105,6 +141,27 @@ pub struct BookSettings<T: Real> {
     /// linearization; the line search then cuts the step to a sliver every frame and the
     /// page crawls further and further behind. Default 1 (two thirds of a grid cell).
     pub pull_reach: T,
+    /// The grip (dimensionless): the grab's pull never pulls harder than the tension that
+    /// stretches a grid edge of the page by this much; a finger that pulls harder slips
+    /// (see [`crate::terms::Grip`] and [`crate::BookTerms::grip_force`]). Default 0.0075,
+    /// just above the default pull's largest force, so the default grab never slips.
+    /// Without it the pull's force is $2 w_{\mathrm{pos}} r$ on the leash $r$ and grows
+    /// with the pull weight: drags of the page turn stretched the page by 18 % at
+    /// $w_{\mathrm{pos}} = 10^4$, 33 % at $10^6$ and 4280 % at $10^9$; with a grip of
+    /// 0.02, 3.5 % to 7.6 % at the same weights, and random gestures still found 12 %.
+    pub grip_strain: T,
+    /// The fastest turn of the held node about the binding (radians per second): the leash
+    /// of one step is also at most this turn, $\omega h \rho$ at the node's distance
+    /// $\rho$ from the binding along the flat page. One Newton iteration per step
+    /// linearizes the soft isometry (eq. 13), and an edge turned by $\theta$ along its
+    /// tangent grows by $\approx\theta^2/2$; a node held one cell from the spine and led on
+    /// the plain leash turned 0.3 rad per step and stretched the page by over 10 %.
+    /// Default 4 (0.067 rad per step at 60 steps per second): the default grab near the
+    /// fore-edge, 10.5 units from the binding, gets a leash of 0.7, and a smoothstep half
+    /// turn in 100 steps (2.8 rad/s at its fastest) still lands on the left in `f32`; at 3
+    /// it fell back to the right (`capi/tests/page_turn.rs`), and at 6 random gestures within
+    /// the weight ranges stretched the page by 13 %.
+    pub pull_turn_rate: T,
     /// Tent height over the binding as a fraction of the grabbed node's distance from the
     /// binding (see [`crate::interaction::Tent`]).
     pub tent_height: T,
@@ -192,6 +249,8 @@ impl<T: Real> Default for BookSettings<T> {
             cover_mass: T::from_f64(5.0),
             min_block_mass: T::HALF,
             pull_reach: T::ONE,
+            grip_strain: T::from_f64(0.0075),
+            pull_turn_rate: T::from_f64(4.0),
             tent_height: T::from_f64(0.6),
             merge_speed: T::from_f64(0.5),
             merge_frames: 10,
@@ -289,8 +348,14 @@ impl<T: Real> BookSettings<T> {
             ("contact_stiffness", self.contact_stiffness),
             ("contact_friction", self.contact_friction),
         ];
-        for (field, v) in self.weights.named().into_iter().chain(others) {
+        for (field, v) in others {
             check(non_negative(v), field, "finite and >= 0")?;
+        }
+        for ((field, v), (_, lo, hi, requirement)) in
+            self.weights.named().into_iter().zip(WEIGHT_RANGES)
+        {
+            let v = v.to_f64();
+            check(v.is_finite() && v >= lo && v <= hi, field, requirement)?;
         }
         for (field, v) in [
             ("page_mass", self.page_mass),
@@ -298,6 +363,8 @@ impl<T: Real> BookSettings<T> {
             ("min_block_mass", self.min_block_mass),
             ("merge_speed", self.merge_speed),
             ("pull_reach", self.pull_reach),
+            ("grip_strain", self.grip_strain),
+            ("pull_turn_rate", self.pull_turn_rate),
             ("settle_tolerance", self.settle_tolerance),
             ("constraint_tolerance", self.constraint_tolerance),
         ] {

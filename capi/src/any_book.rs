@@ -9,6 +9,11 @@ use crate::step::FolioStepReport;
 
 /// A [`Book`] in `f32` or `f64` (`FolioBookSettings::precision`).
 #[derive(Debug)]
+#[allow(
+    clippy::large_enum_variant,
+    reason = "one book per handle, held once; the two precisions differ by the settings' \
+              width, and boxing would add an indirection to every call"
+)]
 pub(crate) enum AnyBook {
     /// Single precision.
     F32(Book<f32>),

@@ -185,6 +185,16 @@ mod tests {
         assert!(message.contains("midline"), "{message}");
         let (line, column, message) = refused("[weights]\nglue = 2e9\n");
         assert_eq!((line, column), (5, 8), "{message}");
-        assert!(message.contains("[0, 1e9]"), "{message}");
+        assert!(
+            message.starts_with("weights.glue must be in ["),
+            "{message}"
+        );
+        // Inside [0, 1e9] but outside the range the book holds (issue 20).
+        let (line, column, message) = refused("[weights]\npull = 1e9\n");
+        assert_eq!((line, column), (5, 8), "{message}");
+        assert!(
+            message.starts_with("weights.pull must be in ["),
+            "{message}"
+        );
     }
 }

@@ -10,8 +10,8 @@ use crate::number::show;
 /// The most pages a book may have: more only make every frame slower.
 pub const MAX_PAGES: u32 = 100_000;
 
-/// The largest weight (`[weights]`): larger ones only stiffen the page into a badly
-/// conditioned step.
+/// No weight (`[weights]`) may exceed this; each has its own, narrower range
+/// ([`folio_book::WEIGHT_RANGES`]), which [`weight`] checks.
 pub const MAX_WEIGHT: f64 = 1e9;
 
 /// The shortest time step (seconds). A scene runs at most $10^6$ frames, so a shorter step
@@ -68,15 +68,25 @@ pub fn time_step(h: f64) -> Result<(), String> {
     }
 }
 
-/// Checks a weight (`weights.*`): finite, in $[0,$ [`MAX_WEIGHT`]$]$.
+/// Checks a weight (`weights.*`): finite and in its range of [`folio_book::WEIGHT_RANGES`]
+/// (the range the DOG book holds its page within 10 % stretch), or in $[0,$
+/// [`MAX_WEIGHT`]$]$ for a key without one.
 ///
 /// # Errors
-/// The message, naming the weight and its value.
+/// The message, naming the weight, its range and its value.
 pub fn weight(key: &str, w: f64) -> Result<(), String> {
-    if w.is_finite() && (0.0..=MAX_WEIGHT).contains(&w) {
+    let (lo, hi, requirement) = folio_book::WEIGHT_RANGES
+        .iter()
+        .find(|range| range.0 == key)
+        .map_or((0.0, MAX_WEIGHT, "in [0, 1e9]"), |r| (r.1, r.2, r.3));
+    if w.is_finite() && (lo..=hi).contains(&w) {
         Ok(())
     } else {
-        Err(format!("{key} must be in [0, 1e9], not {}", show(w)))
+        Err(format!(
+            "{key} must be {requirement} (the range the DOG book holds its page within 10 % \
+             stretch; see folio_book::WEIGHT_RANGES), not {}",
+            show(w)
+        ))
     }
 }
 

@@ -3,6 +3,7 @@
 //! residual, a typed error with its place, the previous state kept), never only that
 //! nothing panicked.
 
+mod book;
 mod cli;
 mod gestures;
 mod pages;
