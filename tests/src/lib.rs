@@ -8,6 +8,7 @@
 //! blocks of linear terms do not divide rounding noise by zero).
 
 pub mod counting;
+pub mod dense_kkt;
 pub mod models;
 pub mod terms;
 

@@ -4,3 +4,4 @@
 //! A crash the fuzzers (`fuzz/`) find becomes a case here.
 
 mod kernels;
+mod solvers;
