@@ -9,6 +9,7 @@
 
 pub mod counting;
 pub mod dense_kkt;
+pub mod fuzz;
 pub mod models;
 pub mod terms;
 
