@@ -85,15 +85,8 @@ pub fn play_in<T: Real>(settings: BookSettings<T>, script: &Script) -> Play<T> {
 }
 
 /// The larger of `a` and `b`, NaN if either is: the fold for report maxima, where
-/// `f64::max` would drop a NaN and let a broken run look good.
-#[must_use]
-pub fn worst(a: f64, b: f64) -> f64 {
-    if a.is_nan() || b.is_nan() {
-        f64::NAN
-    } else {
-        a.max(b)
-    }
-}
+/// `f64::max` would drop a NaN and let a broken run look good (shared with the tests).
+pub use folio_tests::worst;
 
 /// The `q`-quantile (0..=1) of `samples`.
 #[must_use]

@@ -11,9 +11,12 @@
 //! $s_k d_k \le \epsilon$ is replaced by $s_k \delta$ and counted. The factor is then that of
 //! $K + E$ with a small diagonal $E$, which iterative refinement against $K$ corrects.
 //! Constraint rows that the ordering eliminates before any unknown they couple to have a
-//! structurally zero pivot; they take $-\delta$ always (static regularization, as in
-//! quasi-definite solvers) and are not counted, so the count still means a (numerically)
-//! singular system.
+//! structurally zero pivot: their $d_k$ is the stored diagonal $a_{kk}$ alone. An exact zero
+//! there takes $-\delta$ (static regularization, as in quasi-definite solvers) and is not
+//! counted, so the count still means a (numerically) singular system; a stored nonzero
+//! $a_{kk}$ (a compliant constraint) is a pivot like any other, kept when its sign is right
+//! and counted when it is replaced. A constraint row with no entry at all (its column of
+//! $L$ empty as well) makes $K$ singular in any order: it is counted, shifted or not.
 //!
 //! With a dual shift $\delta_d > 0$ ([`Ldlt::set_dual_shift`]) every constraint pivot is
 //! shifted by $-\delta_d \sigma_k$ before its sign test: the factor is then that of the
@@ -50,7 +53,8 @@ use crate::symbolic::{Arrays, Structure, Symbolic};
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum FactorOutcome {
-    /// Factorized; `regularized` pivots were replaced by $s_k \delta$.
+    /// Factorized; `regularized` pivots were replaced by $s_k \delta$ or belong to a
+    /// constraint row with no entry at all (module docs): a (numerically) singular system.
     Factored {
         /// Number of regularized pivots.
         regularized: usize,
@@ -658,10 +662,16 @@ impl Pivots {
         let pivot_scale = job.scale[k];
         let sign = if s.signs[k] > 0 { T::ONE } else { -T::ONE };
         let shifted = s.signs[k] < 0 && job.dual_shift > T::ZERO;
+        let stored_zero = diagonal == T::ZERO;
+        if s.structural_zero[k] && stored_zero && s.l_ptr[k] == s.l_ptr[k + 1] {
+            // No entry in its row or column of K (an empty column of L too): the system
+            // is singular in any order, which the count says.
+            self.regularized += 1;
+        }
         if shifted {
             diagonal -= job.dual_shift * pivot_scale;
         }
-        if s.structural_zero[k] && !shifted {
+        if s.structural_zero[k] && !shifted && stored_zero {
             diagonal = sign * delta * pivot_scale;
         } else if sign * diagonal <= epsilon * pivot_scale {
             diagonal = sign * delta * pivot_scale;

@@ -198,8 +198,8 @@ impl Symbolic {
     }
 
     /// Per new index, $n$ entries: `true` for a constraint row eliminated before any unknown
-    /// it couples to (an empty row of $L$; its pivot is structurally zero and the numeric
-    /// phase regularizes it statically, see [`crate::ldlt`]).
+    /// it couples to (an empty row of $L$; its pivot is its stored diagonal alone, which the
+    /// numeric phase regularizes statically when it is exactly zero, see [`crate::ldlt`]).
     #[inline]
     #[must_use]
     pub fn structural_zero(&self) -> &[bool] {

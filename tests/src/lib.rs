@@ -8,7 +8,9 @@
 //! blocks of linear terms do not divide rounding noise by zero).
 
 pub mod counting;
+pub mod dense_kkt;
 pub mod elastica;
+pub mod fuzz;
 pub mod models;
 pub mod terms;
 
@@ -69,19 +71,42 @@ impl Rng {
     }
 }
 
-/// Relative error as described in the crate docs.
+/// The larger of `a` and `b`, NaN if either is: the fold for every maximum a test asserts
+/// on, where `f64::max` would drop a NaN (`NaN.max(1e-9)` is `1e-9`) and let a broken
+/// result pass.
+#[inline]
+#[must_use]
+pub fn worst<T: PartialOrd + Copy + core::ops::Add<Output = T>>(a: T, b: T) -> T {
+    match a.partial_cmp(&b) {
+        // Unordered: one is NaN, and so is the sum.
+        None => a + b,
+        Some(core::cmp::Ordering::Less) => b,
+        Some(_) => a,
+    }
+}
+
+/// The smaller of `a` and `b`, NaN if either is ([`worst`]'s counterpart for minima).
+#[inline]
+#[must_use]
+pub fn least<T: PartialOrd + Copy + core::ops::Add<Output = T>>(a: T, b: T) -> T {
+    match a.partial_cmp(&b) {
+        None => a + b,
+        Some(core::cmp::Ordering::Greater) => b,
+        Some(_) => a,
+    }
+}
+
+/// The largest of `values` and 0 ([`worst`] folded from 0): NaN if any value is NaN.
+#[must_use]
+pub fn nan_max(values: impl IntoIterator<Item = f64>) -> f64 {
+    values.into_iter().fold(0.0, worst)
+}
+
+/// Relative error as described in the crate docs; NaN when any component is NaN.
 #[must_use]
 pub fn rel_err(analytic: &[f64], fd: &[f64]) -> f64 {
-    let diff = analytic
-        .iter()
-        .zip(fd)
-        .map(|(a, f)| (a - f).abs())
-        .fold(0.0, f64::max);
-    let scale = analytic
-        .iter()
-        .chain(fd)
-        .map(|v| v.abs())
-        .fold(1e-2, f64::max);
+    let diff = nan_max(analytic.iter().zip(fd).map(|(a, f)| (a - f).abs()));
+    let scale = analytic.iter().chain(fd).map(|v| v.abs()).fold(1e-2, worst);
     diff / scale
 }
 
@@ -127,13 +152,13 @@ pub struct FdErrors {
 }
 
 impl FdErrors {
-    /// Component-wise maximum.
+    /// Component-wise maximum, NaN where either is ([`worst`]).
     #[must_use]
     pub fn max(self, o: Self) -> Self {
         Self {
-            first: self.first.max(o.first),
-            second: self.second.max(o.second),
-            asymmetry: self.asymmetry.max(o.asymmetry),
+            first: worst(self.first, o.first),
+            second: worst(self.second, o.second),
+            asymmetry: worst(self.asymmetry, o.asymmetry),
         }
     }
 }
@@ -204,12 +229,8 @@ pub fn to_f32<const N: usize>(x: &NodeVecs<f64, N>) -> NodeVecs<f32, N> {
 #[must_use]
 pub fn precision_gap(f32s: &[f32], f64s: &[f64]) -> f64 {
     let as64: Vec<f64> = f32s.iter().map(|&v| f64::from(v)).collect();
-    let diff = as64
-        .iter()
-        .zip(f64s)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max);
-    diff / f64s.iter().map(|v| v.abs()).fold(1.0, f64::max)
+    let diff = nan_max(as64.iter().zip(f64s).map(|(a, b)| (a - b).abs()));
+    diff / f64s.iter().map(|v| v.abs()).fold(1.0, worst)
 }
 
 /// Flattens node vectors of either precision into `f64`s.

@@ -39,9 +39,10 @@ fn play<T: Real>(text: &str) -> (Book<T>, Run) {
         if !report.solver.status.advanced() {
             run.stalled_steps += 1;
         }
-        run.linear_residual_max = run
-            .linear_residual_max
-            .max(report.solver.linear_residual.to_f64());
+        run.linear_residual_max = folio_tests::worst(
+            run.linear_residual_max,
+            report.solver.linear_residual.to_f64(),
+        );
         if let Some(side) = report.merged {
             run.merged.push((frame, side));
         }
@@ -58,10 +59,9 @@ fn play<T: Real>(text: &str) -> (Book<T>, Run) {
             run.frames_with_page += 1;
             run.max_stretch_sum += max.to_f64();
             run.rms_stretch_sum += rms.to_f64();
-            run.dog_max = run.dog_max.max(book.dog_residual().unwrap().to_f64());
-            run.penetration_max = run
-                .penetration_max
-                .max(book.penetration().unwrap().to_f64());
+            run.dog_max = folio_tests::worst(run.dog_max, book.dog_residual().unwrap().to_f64());
+            run.penetration_max =
+                folio_tests::worst(run.penetration_max, book.penetration().unwrap().to_f64());
         }
     }
     run.positions = book

@@ -51,8 +51,8 @@ fn at_rest_and_grabbed<T: Real>() {
     let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
     for p in &m.positions {
         for a in 0..3 {
-            lo[a] = lo[a].min(p[a]);
-            hi[a] = hi[a].max(p[a]);
+            lo[a] = folio_tests::least(lo[a], p[a]);
+            hi[a] = folio_tests::worst(hi[a], p[a]);
         }
     }
     let w = params.page_width as f32;

@@ -110,7 +110,7 @@ fn play<P: PageModel<f64>>(
             "frame {k}: not finite"
         );
         let m = frame_metrics(grid, [w, h], &samples).unwrap();
-        worst = worst.max(m.max_stretch);
+        worst = folio_tests::worst(worst, m.max_stretch);
         check(page, k, m.max_stretch, step.status)?;
     }
     Ok(worst)
@@ -130,7 +130,7 @@ fn link_deformation(page: &SpringPage<f64>) -> f64 {
             let l = (x[t.nodes[0] as usize] - x[t.nodes[1] as usize]).length();
             (l / t.kernel.rest_length - 1.0).abs()
         })
-        .fold(0.0, f64::max)
+        .fold(0.0, folio_tests::worst)
 }
 
 /// One spring-page case (the property tests below): settings from the draws, the gesture

@@ -22,7 +22,7 @@ fn worst_stretch(curl: &ConeCurl<f64>, h: f64) -> f64 {
                 };
                 if i + di <= nx && j + dj <= ny && !near_apex(i, j) && !near_apex(i + di, j + dj) {
                     let d = (p(i + di, j + dj) - p(i, j)).length();
-                    worst = worst.max((d - h).abs() / h);
+                    worst = folio_tests::worst(worst, (d - h).abs() / h);
                 }
             }
         }
@@ -164,7 +164,7 @@ fn batch_gap<T: folio_kernels::Real>(theta: f64, apex: f64, rho: f64, pts: &[(f6
         // Against the f64 per-point map evaluated at the same (rounded) inputs.
         let r = reference.map_point(xs[k].to_f64(), ys[k].to_f64());
         let got = DVec3::new(ox[k].to_f64(), oy[k].to_f64(), oz[k].to_f64());
-        worst = worst.max((got - r).length() / (1.0 + x.abs() + y.abs()));
+        worst = folio_tests::worst(worst, (got - r).length() / (1.0 + x.abs() + y.abs()));
     }
     worst
 }
@@ -182,8 +182,8 @@ fn batched_map_matches_the_per_point_map() {
         (FRAC_PI_2, 0.0, PI),
         (1e-4, -1.0, 0.0),
     ] {
-        w64 = w64.max(batch_gap::<f64>(theta, apex, rho, &pts));
-        w32 = w32.max(batch_gap::<f32>(theta, apex, rho, &pts));
+        w64 = folio_tests::worst(w64, batch_gap::<f64>(theta, apex, rho, &pts));
+        w32 = folio_tests::worst(w32, batch_gap::<f32>(theta, apex, rho, &pts));
     }
     println!("batched vs per-point map: f64 {w64:.2e}, f32 {w32:.2e} (relative to page scale)");
     assert!(w64 <= 1e-12, "f64 batch gap {w64:e}");
@@ -214,11 +214,14 @@ fn f32_map_and_jacobian_agree_with_f64() {
         let c32 = ConeCurl::new(t as f32, a as f32, r as f32);
         let p = c32.map_point(x as f32, y as f32);
         let q = c64.map_point(x, y);
-        map_gap = map_gap.max((DVec3::new(p.x.into(), p.y.into(), p.z.into()) - q).length() / 16.0);
+        map_gap = folio_tests::worst(
+            map_gap,
+            (DVec3::new(p.x.into(), p.y.into(), p.z.into()) - q).length() / 16.0,
+        );
         let (j32, j64) = (c32.jacobian(x as f32, y as f32), c64.jacobian(x, y));
         for (u, v) in j32.iter().zip(&j64) {
             let u = DVec3::new(u.x.into(), u.y.into(), u.z.into());
-            jac_gap = jac_gap.max((u - *v).length() / v.length().max(1.0));
+            jac_gap = folio_tests::worst(jac_gap, (u - *v).length() / v.length().max(1.0));
         }
     }
     println!("f32 vs f64: map {map_gap:.2e}, Jacobian {jac_gap:.2e}");

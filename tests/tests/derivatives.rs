@@ -234,7 +234,7 @@ fn spring_force_and_damping_jacobians() {
             .iter()
             .flat_map(|p| (-*p).to_array())
             .collect();
-        worst = worst.max(rel_err(&f, &g));
+        worst = folio_tests::worst(worst, rel_err(&f, &g));
         // Damping Jacobian against differences of the damping force in the velocities.
         let jd = folio_tests::flat_blocks::<f64, 2>(&s.damping_jacobian(&x, kd));
         let jd_fd = folio_tests::fd_jacobian(&v, |w| {
@@ -243,12 +243,12 @@ fn spring_force_and_damping_jacobians() {
                 .flat_map(|p| p.to_array())
                 .collect()
         });
-        worst = worst.max(rel_err(&jd, &jd_fd));
+        worst = folio_tests::worst(worst, rel_err(&jd, &jd_fd));
         let fj = folio_tests::flat_blocks::<f64, 2>(&s.force_jacobian(&x));
         let fj_fd = folio_tests::fd_jacobian(&x, |y| {
             s.force(y).iter().flat_map(|p| p.to_array()).collect()
         });
-        worst = worst.max(rel_err(&fj, &fj_fd));
+        worst = folio_tests::worst(worst, rel_err(&fj, &fj_fd));
     }
     println!("{:<28} first {worst:9.2e}", "spring force / damping");
     assert!(
@@ -284,7 +284,7 @@ fn cone_curl_jacobian() {
                 fd[row * 3 + k] = d[row];
             }
         }
-        worst = worst.max(rel_err(&analytic, &fd));
+        worst = folio_tests::worst(worst, rel_err(&analytic, &fd));
     }
     println!("{:<28} first {worst:9.2e}", "cone curl Jacobian");
     assert!(worst <= FD_TOL, "cone Jacobian error {worst:e}");

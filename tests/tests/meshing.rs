@@ -541,7 +541,10 @@ fn arc_block_mesh_is_a_closed_outward_solid() {
             assert!((0.0..=17.0).contains(&p[2]), "vertex {k}");
         }
         let top = vertices_of(&m, Surface::BlockTop);
-        let u_max = top.iter().map(|&v| m.uvs[v][0]).fold(0.0, f32::max);
+        let u_max = top
+            .iter()
+            .map(|&v| m.uvs[v][0])
+            .fold(0.0, folio_tests::worst);
         assert!((f64::from(u_max) - polyline(&midline) / WIDTH).abs() < 1e-6);
         let u_zero = top.iter().filter(|&&v| m.uvs[v][0] == 0.0).count();
         assert_eq!(u_zero, 2 * (fan + 1), "the fan and its z copies have u = 0");
@@ -674,7 +677,9 @@ fn cover_is_an_outward_box() {
         assert!((signed_volume(&m) - volume).abs() < 1e-4 * volume);
         // The top face contains the segment and faces away from `down`.
         let z = m.positions.iter().map(|p| p[2]);
-        let (zmin, zmax) = z.fold((f32::MAX, f32::MIN), |(a, b), z| (a.min(z), b.max(z)));
+        let (zmin, zmax) = z.fold((f32::MAX, f32::MIN), |(a, b), z| {
+            (folio_tests::least(a, z), folio_tests::worst(b, z))
+        });
         assert_eq!((zmin, zmax), (-0.25, 17.25));
         let up = m
             .normals

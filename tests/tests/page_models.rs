@@ -68,7 +68,7 @@ fn mean(v: impl Iterator<Item = f64>) -> f64 {
 }
 
 fn worst(v: impl Iterator<Item = f64>) -> f64 {
-    v.fold(0.0, f64::max)
+    v.fold(0.0, folio_tests::worst)
 }
 
 fn count(p: &Played, status: PageStatus) -> usize {

@@ -31,11 +31,11 @@ fn f32_agrees_with_f64_for_every_term() {
                     let b32: Vec<f32> = b.iter().map(|&v| v as f32).collect();
                     folio_tests::precision_gap(&b32, a)
                 })
-                .fold(0.0, f64::max);
+                .fold(0.0, folio_tests::worst);
             if worst.len() <= k {
                 worst.push((name, 0.0));
             }
-            worst[k].1 = worst[k].1.max(gap);
+            worst[k].1 = folio_tests::worst(worst[k].1, gap);
         }
     }
     for (name, gap) in &worst {
@@ -81,13 +81,19 @@ fn membrane_and_hinge_f32_agree_with_f64() {
         let x3: NodeVecs<f64, 3> = [x[0], x[1], x[2]];
         let m64 = Membrane::new([u[0], u[1], u[2]], y, nu).unwrap();
         let m32 = Membrane::new([u32[0], u32[1], u32[2]], y as f32, nu as f32).unwrap();
-        membrane = membrane.max(gap(&outputs(&m32, &to_f32(&x3)), &outputs(&m64, &x3)));
-        projected = projected.max(gap(
-            &flat_blocks::<f32, 3>(&m32.hessian_projected(&to_f32(&x3))),
-            &flat_blocks::<f64, 3>(&m64.hessian_projected(&x3)),
-        ));
+        membrane = folio_tests::worst(
+            membrane,
+            gap(&outputs(&m32, &to_f32(&x3)), &outputs(&m64, &x3)),
+        );
+        projected = folio_tests::worst(
+            projected,
+            gap(
+                &flat_blocks::<f32, 3>(&m32.hessian_projected(&to_f32(&x3))),
+                &flat_blocks::<f64, 3>(&m64.hessian_projected(&x3)),
+            ),
+        );
         let (h64, h32) = (Hinge::new(u).unwrap(), Hinge::new(u32).unwrap());
-        hinge = hinge.max(gap(&outputs(&h32, &to_f32(&x)), &outputs(&h64, &x)));
+        hinge = folio_tests::worst(hinge, gap(&outputs(&h32, &to_f32(&x)), &outputs(&h64, &x)));
     }
     for (name, g) in [
         ("membrane", membrane),

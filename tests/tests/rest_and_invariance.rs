@@ -151,7 +151,7 @@ fn potential_invariance<P: Potential<f64, N>, const N: usize>(
     let value = rel_err(&[p.value(&y)], &[p.value(x)]);
     let grad = rel_err(&flat(&p.gradient(&y)), &flat(&p.gradient(x).map(|g| q * g)));
     let hess = rotated_hessian_err(&p.hessian(&y), &p.hessian(x), q);
-    value.max(grad).max(hess)
+    folio_tests::worst(folio_tests::worst(value, grad), hess)
 }
 
 fn constraint_invariance<C: Constraint<f64, R, N>, const R: usize, const N: usize>(
@@ -170,7 +170,7 @@ fn constraint_invariance<C: Constraint<f64, R, N>, const R: usize, const N: usiz
         .flat_map(|row| flat(&row.map(|g| q * g)))
         .collect();
     let hess = rotated_hessian_err(&c.hessian(&y, &lambda), &c.hessian(x, &lambda), q);
-    value.max(rel_err(&jy, &jx)).max(hess)
+    folio_tests::worst(folio_tests::worst(value, rel_err(&jy, &jx)), hess)
 }
 
 #[test]
@@ -183,39 +183,48 @@ fn invariant_terms_are_invariant_under_rigid_motion() {
         let s4 = jittered_star(&mut rng, BOUNDARY_DIRS, 0.6);
         let s3 = jittered_star(&mut rng, [DVec3::ZERO, DVec3::X, DVec3::NEG_X], 0.6);
         let pair = [rng.vec(2.0), rng.vec(2.0)];
-        worst = worst.max(constraint_invariance(&DogInnerStar::new(), &s5, q, t));
-        worst = worst.max(constraint_invariance(&DogBoundaryStar::new(), &s4, q, t));
-        worst = worst.max(constraint_invariance(
-            &Iso2d::new(1.1).unwrap(),
-            &pair,
-            q,
-            t,
-        ));
-        worst = worst.max(potential_invariance(
-            &dog_laplacian::inner([0.9, 1.1, 1.0, 0.8]).unwrap(),
-            &s5,
-            q,
-            t,
-        ));
-        worst = worst.max(potential_invariance(
-            &dog_laplacian::boundary([0.9, 1.2]).unwrap(),
-            &s3,
-            q,
-            t,
-        ));
-        worst = worst.max(potential_invariance(
-            &curve_laplacian::new([0.7, 1.3]).unwrap(),
-            &s3,
-            q,
-            t,
-        ));
-        worst = worst.max(potential_invariance(&Iso3d::new(1.2).unwrap(), &pair, q, t));
-        worst = worst.max(potential_invariance(
-            &Spring::new(SpringKind::Shear.rest_length(1.0), 2.0).unwrap(),
-            &pair,
-            q,
-            t,
-        ));
+        worst = folio_tests::worst(
+            worst,
+            constraint_invariance(&DogInnerStar::new(), &s5, q, t),
+        );
+        worst = folio_tests::worst(
+            worst,
+            constraint_invariance(&DogBoundaryStar::new(), &s4, q, t),
+        );
+        worst = folio_tests::worst(
+            worst,
+            constraint_invariance(&Iso2d::new(1.1).unwrap(), &pair, q, t),
+        );
+        worst = folio_tests::worst(
+            worst,
+            potential_invariance(
+                &dog_laplacian::inner([0.9, 1.1, 1.0, 0.8]).unwrap(),
+                &s5,
+                q,
+                t,
+            ),
+        );
+        worst = folio_tests::worst(
+            worst,
+            potential_invariance(&dog_laplacian::boundary([0.9, 1.2]).unwrap(), &s3, q, t),
+        );
+        worst = folio_tests::worst(
+            worst,
+            potential_invariance(&curve_laplacian::new([0.7, 1.3]).unwrap(), &s3, q, t),
+        );
+        worst = folio_tests::worst(
+            worst,
+            potential_invariance(&Iso3d::new(1.2).unwrap(), &pair, q, t),
+        );
+        worst = folio_tests::worst(
+            worst,
+            potential_invariance(
+                &Spring::new(SpringKind::Shear.rest_length(1.0), 2.0).unwrap(),
+                &pair,
+                q,
+                t,
+            ),
+        );
         // The glue lives in the XY plane: invariant under rotations about Z and any translation.
         let qz = DQuat::from_rotation_z(rng.uniform(-3.0, 3.0));
         let b1 = rng.vec(1.0);
@@ -225,7 +234,7 @@ fn invariant_terms_are_invariant_under_rigid_motion() {
             b1 + DVec3::new(0.4, 0.1, 0.0),
             b1 + DVec3::new(0.5, 1.2, -0.2),
         ];
-        worst = worst.max(potential_invariance(&Glue::new(), &glue_x, qz, t));
+        worst = folio_tests::worst(worst, potential_invariance(&Glue::new(), &glue_x, qz, t));
     }
     println!("worst rigid-motion discrepancy {worst:.2e}");
     assert!(worst <= 1e-10, "rigid motion changed a term by {worst:e}");
@@ -361,7 +370,7 @@ fn membrane_uniaxial_plane_stress() {
             * m.dm_inv
                 .iter()
                 .flatten()
-                .fold(0.0_f64, |a, b| a.max(b.abs()));
+                .fold(0.0_f64, |a, b| folio_tests::worst(a, b.abs()));
         let lateral = q * DVec3::Y;
         for g in m.gradient(&x) {
             let across = g.dot(lateral);
@@ -382,10 +391,13 @@ fn membrane_and_hinge_are_invariant_under_rigid_motion() {
         let u = pattern_triangle(&mut rng);
         let m = Membrane::new(u, rng.uniform(0.5, 3.0), rng.uniform(0.0, 0.49)).unwrap();
         let x = rigid(&embed(&u), rng.rotation(), rng.vec(2.0)).map(|p| p * 1.1 + rng.vec(0.3));
-        worst = worst.max(potential_invariance(&m, &x, q, t));
+        worst = folio_tests::worst(worst, potential_invariance(&m, &x, q, t));
         let h = pattern_hinge(&mut rng);
         let x4 = rigid(&embed(&h), rng.rotation(), rng.vec(2.0)).map(|p| p + rng.vec(0.5));
-        worst = worst.max(potential_invariance(&Hinge::new(h).unwrap(), &x4, q, t));
+        worst = folio_tests::worst(
+            worst,
+            potential_invariance(&Hinge::new(h).unwrap(), &x4, q, t),
+        );
     }
     println!("worst rigid-motion discrepancy (sheet terms) {worst:.2e}");
     assert!(

@@ -1131,8 +1131,11 @@ fn inner_triangles<T: Real>(m: &SheetMesh<T>) -> Vec<usize> {
 
 fn stats(x: impl Iterator<Item = f64>) -> (f64, f64, f64) {
     let x: Vec<f64> = x.collect();
-    let min = x.iter().copied().fold(f64::INFINITY, f64::min);
-    let max = x.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let min = x.iter().copied().fold(f64::INFINITY, folio_tests::least);
+    let max = x
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, folio_tests::worst);
     (min, x.iter().sum::<f64>() / x.len() as f64, max)
 }
 
@@ -1291,7 +1294,7 @@ fn a_diagonal_cylinder_has_diagonal_rulings_and_the_remesh_follows_them() {
                 (e[0] * f[1] - e[1] * f[0]).atan2(e[0] * f[0] + e[1] * f[1])
             })
         })
-        .fold(f64::INFINITY, f64::min);
+        .fold(f64::INFINITY, folio_tests::least);
     println!(
         "remesh: {flips} flips, mean |cos(edge, ruling)| {before:.4} -> {after:.4}; again: \
          {again} flips; after it kappa R on inner triangles {lo:.4} / {mean:.4} / {hi:.4}, \

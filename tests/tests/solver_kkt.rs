@@ -53,8 +53,10 @@ fn residual_f64<T: Real>(kkt: &Kkt<T>, z: &[T], b: &[T]) -> f64 {
             }
         }
     }
-    let b_norm = b.iter().fold(0.0f64, |m, v| m.max(v.to_f64().abs()));
-    r.iter().fold(0.0f64, |m, v| m.max(v.abs())) / b_norm
+    let b_norm = b
+        .iter()
+        .fold(0.0f64, |m, v| folio_tests::worst(m, v.to_f64().abs()));
+    r.iter().fold(0.0f64, |m, v| folio_tests::worst(m, v.abs())) / b_norm
 }
 
 /// $S K S$ and $S b$ with $S_i = 10^{(i \bmod 7) - 3}$: the same solution up to $S$, with
@@ -73,10 +75,10 @@ fn rescale_rows(kkt: &mut Kkt<f32>, rhs: &mut [f32]) {
 }
 
 fn max_rel(a: &[f64], b: &[f64]) -> f64 {
-    let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let scale = a.iter().fold(0.0f64, |m, v| folio_tests::worst(m, v.abs()));
     a.iter()
         .zip(b)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+        .fold(0.0f64, |m, (x, y)| folio_tests::worst(m, (x - y).abs()))
         / scale
 }
 

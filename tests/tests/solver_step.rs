@@ -93,7 +93,8 @@ fn hanging_chain_settles_to_the_static_equilibrium() {
     let expected = hanging_chain(LINKS, LENGTH, MASS, span);
     let mut worst: f64 = 0.0;
     for (x, e) in state.x.iter().zip(&expected) {
-        worst = worst.max((x.x - e[0]).abs().max((x.y - e[1]).abs()).max(x.z.abs()));
+        let errors = [(x.x - e[0]).abs(), (x.y - e[1]).abs(), x.z.abs()];
+        worst = errors.into_iter().fold(worst, folio_tests::worst);
     }
     println!("max distance to the independent equilibrium: {worst:.2e}");
     assert!(worst <= 1e-8, "distance {worst:e}");
@@ -230,7 +231,7 @@ fn wrong_state_length_is_an_error() {
 fn link_error(x: &[glam::DVec3]) -> f64 {
     x.windows(2)
         .map(|w| ((w[1] - w[0]).length() - LENGTH).abs())
-        .fold(0.0, f64::max)
+        .fold(0.0, folio_tests::worst)
 }
 
 #[test]

@@ -121,7 +121,10 @@ fn symmetric_pulls_tear_straight() {
     let path = &tears[0].path;
     let (a, b) = (path[0], *path.last().unwrap());
     let deviation = (b[0] - a[0]).atan2(b[1] - a[1]).abs().to_degrees();
-    let lateral = path.iter().map(|p| (p[0] - 6.0).abs()).fold(0.0, f64::max);
+    let lateral = path
+        .iter()
+        .map(|p| (p[0] - 6.0).abs())
+        .fold(0.0, folio_tests::worst);
     println!(
         "symmetric: tear length {:.3}, {} points, chord deviation {deviation:.4} deg, max |u - 6| {lateral:.2e}",
         tear_length(&sheet),
@@ -234,7 +237,7 @@ fn asymmetric_pulls_follow_the_hyperbola() {
     let worst = path
         .iter()
         .map(|&p| (focal(p) - d0).abs())
-        .fold(0.0, f64::max);
+        .fold(0.0, folio_tests::worst);
     let length = tear_length(&sheet);
     println!(
         "asymmetric: tear length {length:.3}, {} points, max ||pA|-|pB| - d0| = {worst:.4} ({:.2} % of the length)",
@@ -557,7 +560,7 @@ fn distance_to_path(p: [f64; 2], path: &[[f64; 2]]) -> f64 {
             };
             dist(p, [w[0][0] + s * e[0], w[0][1] + s * e[1]])
         })
-        .fold(dist(p, path[0]), f64::min)
+        .fold(dist(p, path[0]), folio_tests::least)
 }
 
 fn path_length(path: &[[f64; 2]]) -> f64 {

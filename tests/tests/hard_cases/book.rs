@@ -43,12 +43,12 @@ fn step<T: Real>(book: &mut Book<T>, frame: u32, w: &mut Worst) {
     let c = book.counts();
     w.lost_pages |= c.left + c.right + c.active != book.layout().params.total_pages;
     if let Some((max, _)) = book.stretch() {
-        w.stretch = w.stretch.max(max.to_f64());
-        w.dog = w.dog.max(book.dog_residual().unwrap().to_f64());
-        w.penetration = w.penetration.max(book.penetration().unwrap().to_f64());
+        w.stretch = folio_tests::worst(w.stretch, max.to_f64());
+        w.dog = folio_tests::worst(w.dog, book.dog_residual().unwrap().to_f64());
+        w.penetration = folio_tests::worst(w.penetration, book.penetration().unwrap().to_f64());
     }
     if let (Some(page), Some(k)) = (book.page(), book.held_node()) {
-        w.lift = w.lift.max(page[k].y().to_f64());
+        w.lift = folio_tests::worst(w.lift, page[k].y().to_f64());
     }
     if let Some(side) = report.merged {
         w.merged.get_or_insert((frame, side));

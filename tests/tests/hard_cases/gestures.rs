@@ -73,7 +73,7 @@ fn turn(
         model.sample(grid, &mut samples).unwrap();
         assert!(samples.iter().all(|p| p.is_finite()), "a non-finite sample");
         let m = folio_pages::frame_metrics(grid, model.size(), &samples).unwrap();
-        stretch = stretch.max(m.max_stretch);
+        stretch = folio_tests::worst(stretch, m.max_stretch);
     }
     Ok(stretch)
 }
@@ -141,7 +141,7 @@ fn dog_turn(page: &mut DogPage<f64>, side: BlockSide, held: u32, max_settle: u32
         page.sample(grid, &mut samples).unwrap();
         assert!(samples.iter().all(|p| p.is_finite()), "a non-finite sample");
         let m = folio_pages::frame_metrics(grid, page.size(), &samples).unwrap();
-        stretch = stretch.max(m.max_stretch);
+        stretch = folio_tests::worst(stretch, m.max_stretch);
         frames += 1;
         if frames as usize > path.len() && page.book().counts().active == 0 {
             break;
@@ -182,8 +182,8 @@ fn fifty_turns_back_and_forth_conserve_pages_and_each_merges() {
             (c.left, c.right) == (before.left - 1, before.right + 1)
         };
         assert!(moved, "turn {k} from {side:?}: {before:?} -> {c:?}");
-        worst_settle = worst_settle.max(t.settle_frames);
-        worst_stretch = worst_stretch.max(t.stretch);
+        worst_settle = folio_tests::worst(worst_settle, t.settle_frames);
+        worst_stretch = folio_tests::worst(worst_stretch, t.stretch);
         side = if side == BlockSide::Right {
             BlockSide::Left
         } else {

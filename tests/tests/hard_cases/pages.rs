@@ -35,7 +35,8 @@ fn play(
             samples.iter().all(|p| p.is_finite()),
             "frame {k}: not finite"
         );
-        worst = worst.max(
+        worst = folio_tests::worst(
+            worst,
             frame_metrics(grid, page.size(), &samples)
                 .unwrap()
                 .max_stretch,
