@@ -344,6 +344,7 @@ impl<T: Real> SpringPage<T> {
         let mut shift = self
             .hold
             .and_then(|hold| hold.finger.map(|f| f - hold.rest_point));
+        let mirrored = self.hold.is_some_and(|hold| hold.mirrored);
         if let (Some(d), Some(limit)) = (shift, self.limit.as_ref()) {
             let rho = T::ONE + limit.limit() * T::HALF;
             let s = limit::reach(
@@ -352,6 +353,7 @@ impl<T: Real> SpringPage<T> {
                 self.network.rest(),
                 self.network.roles(),
                 rho,
+                mirrored,
             );
             if s < T::ONE {
                 shift = Some(d * s);
@@ -360,7 +362,6 @@ impl<T: Real> SpringPage<T> {
         }
         let fraction = T::from_f64(f64::from(s) / f64::from(n.max(1)));
         let rest = self.network.rest();
-        let mirrored = self.hold.is_some_and(|hold| hold.mirrored);
         for &k in &self.gripped {
             let k = k as usize;
             let (Some(xk), Some(vk), Some(&rk), Some(&start)) = (

@@ -332,6 +332,8 @@ fn up_from<T: Real>(u: T::Vec3) -> T::Vec3 {
 /// $\sigma = \hat n\cdot c + \sqrt{(\hat n\cdot c)^2 + (\rho^2 - 1)\lvert c\rvert^2}$,
 /// $s = \sigma / L$, the least over all pairs ($d$ is scaled by its largest component first,
 /// so that a finger far away does not overflow). 1 without fixed particles or for $d = 0$.
+/// With `mirrored` (a page taken on the left) the gripped particles' rest positions are
+/// mirrored across the spine, $\bar x_k = (-x, y, z)$, as the grip places them.
 #[must_use]
 pub fn reach<T: Real>(
     d: T::Vec3,
@@ -339,6 +341,7 @@ pub fn reach<T: Real>(
     rest: &[T::Vec3],
     roles: &[Role],
     reach: T,
+    mirrored: bool,
 ) -> T {
     let big = [abs(d.x()), abs(d.y()), abs(d.z())]
         .into_iter()
@@ -354,6 +357,11 @@ pub fn reach<T: Real>(
     for &k in gripped {
         let Some(&xk) = rest.get(k as usize) else {
             continue;
+        };
+        let xk = if mirrored {
+            T::Vec3::new(-xk.x(), xk.y(), xk.z())
+        } else {
+            xk
         };
         for (&xf, role) in rest.iter().zip(roles) {
             if *role != Role::Fixed {
