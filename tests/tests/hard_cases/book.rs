@@ -368,3 +368,14 @@ fn weights_outside_their_ranges_are_refused() {
         }
     }
 }
+
+/// A fuzzer find (`fuzz/corpus/book/flick-twelve-pages`): a 12-page book grabbed at a
+/// material point and flicked by up to a page width per step reached 12.6 % stretch while
+/// held, before the pull's force was capped (`grip_strain`). Asserts the book harness's
+/// guards on that input: finite state, pages conserved, stretch <= 10 %.
+#[test]
+fn fuzz_flick_of_a_twelve_page_book_stays_within_the_guard() {
+    folio_tests::fuzz::book::run(include_bytes!(
+        "../../../fuzz/corpus/book/flick-twelve-pages"
+    ));
+}
