@@ -205,7 +205,9 @@ pub struct BookSettings<T: Real> {
     /// not help a page settle; the module docs give the measurements).
     pub contact_friction: T,
     /// Weight multiplier of the nodes a collision pushed in this step during the projection
-    /// (they stay on the surface that pushed them).
+    /// (they stay on the surface that pushed them): the weight of the last passes, reached
+    /// from 10 by a factor 10 per pass (`collide::pin_weight` gives why and the
+    /// measurements). At least 1; default $10^3$.
     pub contact_pin_weight: T,
     /// Collision detect/resolve rounds per step (the seed's "at most three times").
     pub collision_rounds: u32,

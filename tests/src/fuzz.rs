@@ -30,6 +30,41 @@ pub const TARGETS: [(&str, Harness); 6] = [
     ("capi", capi::run),
 ];
 
+/// The committed seed corpus of `target` (`fuzz/corpus/<target>/`), its files in name order.
+///
+/// # Panics
+/// When the folder cannot be read.
+#[must_use]
+pub fn corpus(target: &str) -> Vec<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../fuzz/corpus")
+        .join(target);
+    let mut files: Vec<std::path::PathBuf> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|entry| entry.expect("a corpus entry").path())
+        .collect();
+    files.sort();
+    files
+}
+
+/// Input `k` of a seeded sweep: for even `k` (or no seeds) up to `len` random bytes, for odd
+/// `k` a seed (in turn) with one to four bytes changed: the stable stand-in for a fuzzer's
+/// exploring.
+pub fn sweep_input(rng: &mut crate::Rng, k: usize, seeds: &[Vec<u8>], len: usize) -> Vec<u8> {
+    if k % 2 == 0 || seeds.is_empty() {
+        let n = (rng.next_u64() as usize) % (len + 1);
+        return (0..n).map(|_| rng.next_u64() as u8).collect();
+    }
+    let mut data = seeds[k / 2 % seeds.len()].clone();
+    for _ in 0..1 + rng.next_u64() % 4 {
+        if !data.is_empty() {
+            let at = (rng.next_u64() as usize) % data.len();
+            data[at] = rng.next_u64() as u8;
+        }
+    }
+    data
+}
+
 /// A reader of structured values from fuzz bytes; past the end every read is zero.
 #[derive(Clone, Debug)]
 pub struct Input<'a> {

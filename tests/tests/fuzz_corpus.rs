@@ -4,23 +4,8 @@
 //! fuzzer finds is fixed and kept as a named case in `tests/tests/hard_cases/`; this test
 //! keeps the corpora and the harnesses building and passing without nightly.
 
-use std::path::{Path, PathBuf};
-
 use folio_tests::Rng;
-use folio_tests::fuzz::TARGETS;
-
-/// The committed corpus of `target`.
-fn corpus(target: &str) -> Vec<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../fuzz/corpus")
-        .join(target);
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
-        .map(|entry| entry.expect("a corpus entry").path())
-        .collect();
-    files.sort();
-    files
-}
+use folio_tests::fuzz::{TARGETS, corpus, sweep_input};
 
 /// The harness of `target`.
 fn harness(target: &str) -> folio_tests::fuzz::Harness {
@@ -47,19 +32,7 @@ fn replay(target: &str, random: usize, len: usize) -> usize {
     }
     let mut rng = Rng::new(0x00f0_220f_0220);
     for k in 0..random {
-        let data: Vec<u8> = if k % 2 == 0 {
-            let n = (rng.next_u64() as usize) % (len + 1);
-            (0..n).map(|_| rng.next_u64() as u8).collect()
-        } else {
-            let mut data = seeds[k / 2 % seeds.len()].clone();
-            for _ in 0..1 + rng.next_u64() % 4 {
-                if !data.is_empty() {
-                    let at = (rng.next_u64() as usize) % data.len();
-                    data[at] = rng.next_u64() as u8;
-                }
-            }
-            data
-        };
+        let data = sweep_input(&mut rng, k, &seeds, len);
         run(&data);
     }
     seeds.len() + random

@@ -23,22 +23,27 @@ pub const MAX_STEPS: u32 = 24;
 /// (issue 20's default bound: 10 %).
 pub const STRETCH_GUARD: f64 = 0.10;
 
-/// The books an input starts from: (total pages, left pages) of (1, 0), (2, 1), (12, 6)
-/// and (40, 0), each 4x6 quads.
+/// A coarse book of `total` pages, `left` of them on the left: 4x6 quads, settled for 200
+/// steps (the harness's books, and the hard cases of their class).
+#[must_use]
+pub fn coarse_settings(total: u32, left: u32) -> BookSettings<f64> {
+    let mut s = BookSettings::<f64>::default();
+    s.params.total_pages = total;
+    s.params.left_pages = left;
+    s.quads_across = 4;
+    s.quads_along = 6;
+    s.settle_steps = 200;
+    s
+}
+
+/// The books an input starts from: [`coarse_settings`] of (total pages, left pages) (1, 0),
+/// (2, 1), (12, 6) and (40, 0).
 pub fn templates() -> &'static [Book<f64>] {
     static BOOKS: OnceLock<Vec<Book<f64>>> = OnceLock::new();
     BOOKS.get_or_init(|| {
         [(1, 0), (2, 1), (12, 6), (40, 0)]
             .into_iter()
-            .filter_map(|(total, left)| {
-                let mut s = BookSettings::<f64>::default();
-                s.params.total_pages = total;
-                s.params.left_pages = left;
-                s.quads_across = 4;
-                s.quads_along = 6;
-                s.settle_steps = 200;
-                Book::new(s).ok()
-            })
+            .filter_map(|(total, left)| Book::new(coarse_settings(total, left)).ok())
             .collect()
     })
 }

@@ -262,3 +262,24 @@ fn the_c_api_refuses_the_page_sizes_a_scene_refuses() {
         );
     }
 }
+
+/// A mass-spring scene whose time step (0.1 s, one substep) is within the scene's range
+/// but past the explicit integrator's stability limit, $h\,\omega_{max} \le 2$, is refused
+/// when the scene is read, at its `[solver]` table, naming the limit; the stable 1/60 s
+/// with the default three substeps is accepted.
+#[test]
+fn a_spring_time_step_past_the_explicit_limit_is_refused() {
+    let scene = |solver: &str| {
+        format!(
+            "name = \"x\"\nmodel = \"mass-spring\"\ninput = {{ fixture = \"page-turn-touch\" }}\n\
+             [solver]\n{solver}\n"
+        )
+    };
+    let e = refused(&scene("time_step = 0.1\nsubsteps = 1"));
+    assert_eq!((e.line, e.column), (4, 1), "{e}");
+    assert!(
+        e.message.contains("explicit integrator needs") && e.message.contains("<= 2"),
+        "{e}"
+    );
+    Scene::parse(&scene("time_step = 0.016666666666666666")).expect("the default step");
+}
