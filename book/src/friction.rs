@@ -12,8 +12,8 @@
 //! so it does not help a page settle, and the default stays the seed's frictionless contact.
 //!
 //! **The law** (Bridson, Fedkiw and Anderson, *Robust treatment of collisions, contact and
-//! friction for cloth animation*, SIGGRAPH 2002, the friction of their inelastic
-//! repulsions, Sec. 7.2): a contact that changes a node's normal velocity by
+//! friction for cloth animation*, SIGGRAPH 2002: the friction they apply with their
+//! inelastic repulsion impulses): a contact that changes a node's normal velocity by
 //! $\Delta v_N \ge 0$ changes its tangential velocity $v_T$ (the part of $v$ in the contact
 //! plane, the obstacle taken at rest) to
 //! $$v_T' = \max\Bigl(0,\ 1 - \mu\thinspace\frac{\Delta v_N}{\lVert v_T\rVert}\Bigr)\thinspace v_T,$$
