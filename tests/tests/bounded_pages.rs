@@ -270,11 +270,13 @@ proptest! {
         spring_case(flags, draws, particles, substeps, &g, true)?;
     }
 
-    /// The cone page with its fit settings drawn across their ranges.
+    /// The cone page with its fit settings drawn across their ranges: $\theta_{lo}$ over its
+    /// whole range $[0.01, \pi/2]$, $A_{max}$ over $[10^{-3}, 10^6]$ page units (page sizes
+    /// 0.1 to 100), the tolerance and the iteration count. Open before the fit's fold bound
+    /// (`folio_pages::cone::fold_theta_min`): the all-zero draw crushed the render grid's
+    /// edges by 86 % (34 % with $\theta_{lo}$ drawn from 0.05); 400 cases measured at most
+    /// 9.92 % after it, against the bound's 9.97 %.
     #[test]
-    #[ignore = "open (issue 20): a grab on the spine edge (u = 0) with fit_apex_max 1e-3 and a \
-                far finger measures 84 % render stretch on the first frame; the cone's \
-                ranges are not narrowed yet"]
     fn the_cone_page_stays_within_the_stretch_bound(
         draws in [0.0..=1.0f64, 0.0..=1.0f64, 0.0..=1.0f64, 0.0..=1.0f64],
         iterations in 1u32..=80,
@@ -284,7 +286,7 @@ proptest! {
         let s = ConeSettings::<f64> {
             width: log_uniform(size, 0.1, 100.0),
             height: log_uniform(size, 0.1, 100.0) * 1.4,
-            fit_theta_min: log_uniform(theta, 0.05, core::f64::consts::FRAC_PI_2),
+            fit_theta_min: log_uniform(theta, 0.01, core::f64::consts::FRAC_PI_2),
             fit_apex_max: log_uniform(apex, 1e-3, 1e6),
             fit_tolerance: log_uniform(tolerance, 1e-9, 1.0),
             fit_iterations: iterations,

@@ -114,6 +114,33 @@ fn cone_flat_limit_theta_to_zero() {
     assert!(worst <= BOUND, "stretch {worst}");
 }
 
+/// The bounded-pages find: a 0.1 x 0.14 cone page with the fit's bounds at the ends of
+/// their ranges ($\theta_{lo} = 0.01$, $A_{max} = 10^{-3}$) grabbed on its fore edge and
+/// pulled towards a finger far beyond the book. Without the fold bound
+/// (`folio_pages::cone::fold_theta_min`) the fit curled the page around an apex
+/// $10^{-3}$ below it and crushed the render grid's edges by 84 % at $\theta_{lo} = 0.05$
+/// (the bounded-pages property test's all-zero draw, $\theta_{lo} = 0.01$: 86 % on its first
+/// held frame). Asserts render stretch <= 10 % on every frame, and that the frames
+/// held on the far finger, which the bounded page cannot reach, say `Unreachable`.
+#[test]
+fn cone_tight_apex_bound_and_a_far_finger() {
+    for theta_min in [0.01, 0.05] {
+        let s = ConeSettings::<f64> {
+            width: 0.1,
+            height: 0.14,
+            fit_theta_min: theta_min,
+            fit_apex_max: 1e-3,
+            ..ConeSettings::default()
+        };
+        let mut page = ConePage::new(s).unwrap();
+        let far = DVec3::new(-100.0, 100.0, -100.0);
+        let path = line(DVec3::new(0.1, 0.0, 0.07), far, 10);
+        let (worst, statuses) = play(&mut page, [0.1, 0.07], &path, 20);
+        assert!(worst <= BOUND, "theta_min {theta_min}: stretch {worst}");
+        assert_eq!(statuses[path.len() - 1], PageStatus::Unreachable);
+    }
+}
+
 /// Below the cone's admissible range: $\theta_{lo} = 10^{-3}$ folds sharper than the render
 /// grid can follow. Asserts a typed refusal at construction.
 #[test]
