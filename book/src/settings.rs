@@ -297,9 +297,15 @@ impl<T: Real> BookSettings<T> {
     /// cell area over this grid's. Per edge the iso3D energy of a uniform strain
     /// $\varepsilon$ is $4\varepsilon^2 h^4$ and there are $\sim 2A_{page}/h^2$ edges, so the
     /// sum scales with $h^2$; the factor makes the page's stretch stiffness independent of
-    /// the grid. Bending needs no factor: the DOG Laplacian divides by the rest lengths, so
-    /// its sum over a page bent with curvature $\kappa$ is $\approx A_{page}\kappa^2$ at any
-    /// resolution. Masses are the page mass spread over the nodes.
+    /// the grid. Bending has no factor, but its sum is not resolution-invariant as this doc
+    /// once claimed: the DOG Laplacian divides by the rest lengths, so an inner vertex adds
+    /// $h^2\kappa^2$ at any spacing, but the 3-neighbour edge rows add $4h^2\kappa^2$ on
+    /// half a cell (8 times their share). On a page rolled across its rows the sum is
+    /// $\kappa^2 h^2 (n_x - 2)(n_y + 6)$ against $A_{page}\kappa^2$: 1.43 times at 8x11,
+    /// 1.24 at 16x22, falling only as $1/n$. [`crate::quadrature`] gives the area-weighted
+    /// terms and masses that converge at every grid (with $D = 2 w_{\mathrm{bend3D}}$); the
+    /// book does not use them yet (issue 21, see that module). Masses are the page mass
+    /// spread equally over the nodes.
     #[must_use]
     pub fn iso_scale(&self) -> f64 {
         let [across, along] = self.grid_spacing();
