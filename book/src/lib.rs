@@ -41,6 +41,7 @@ pub mod layout;
 mod merge;
 pub mod mesh;
 pub mod model;
+pub mod paper;
 pub mod quadrature;
 pub mod script;
 pub mod settings;
@@ -53,6 +54,7 @@ pub use error::BookError;
 pub use interaction::{Ray, Tent};
 pub use layout::{BlockSide, BookLayout, BookParams, LayoutError};
 pub use model::{BookTerms, Family, NodeMap};
+pub use paper::{BookUnits, Paper};
 pub use script::{Action, Event, Script, ScriptError};
 pub use settings::{BookSettings, WEIGHT_RANGES, Weights};
 pub use simulation::{
