@@ -69,6 +69,19 @@
 //! weight ($A_v$, or $2h_xh_z$ for a twist). That is the one place where $D$ becomes the
 //! solver's weights.
 //!
+//! **Clamp** ([`super::SpringSettings::clamped_spine`]). A particle on the fixed spine
+//! column has no second difference across the page; a clamped spine gives it one with a
+//! ghost particle beyond the spine, the mirror image of its neighbour across the plane
+//! $X = 0$ (the finite-difference clamp $w_{-1} = w_1$): with $x_0$ on the spine at rest
+//! and $x_1$ its neighbour, $x_{-1} = (-x_{1,X}, x_{1,Y}, x_{1,Z})$ and
+//! $\delta_u^2 x_0 = 2P(x_1 - x_0)/h_x^2$, $P = \mathrm{diag}(0, 1, 1)$, so the spine row adds
+//! $\frac D2 A_0\cdot 4\lVert P(x_1 - x_0)\rVert^2/h_x^4$ ([`SpineClamp`], $A_0$ the spine
+//! particle's dual area). This is exactly half of a page twice as wide whose middle column
+//! is held: the page's tangent at the spine is held along $\pm X$ (a page turned over to lie
+//! flat on the left is at rest at the spine too; on the way it passes the vertical against
+//! the clamp's largest moment). The twists of the ghost cells are constant and the spine's
+//! own second differences along it are fixed: neither adds a term.
+//!
 //! **Masses.** A page of areal density $\rho$ puts $\rho A_v$ on particle $v$ when
 //! [`super::SpringSettings::area_masses`] is on ([`mass_share`]), the same quadrature as the
 //! bending, so that gravity $\int\rho g\,y\,dA$ and the bending are the same physical page at
@@ -80,7 +93,8 @@
 //! (`tests/tests/elastica_spring.rs`, which gives the figures).
 
 use folio_geometry::QuadGrid;
-use folio_kernels::Real;
+use folio_kernels::term::{Blocks, NodeVecs};
+use folio_kernels::{Mat3Ops, Potential, Real, Vec3Ops};
 
 use super::settings::SpringSettings;
 
@@ -192,6 +206,68 @@ pub fn plate_stencils(grid: QuadGrid, spacing: [f64; 2], mut each: impl FnMut(Pl
     }
 }
 
+/// The clamp's term on the spine's neighbour $x_1$ (module docs):
+/// $V = w\lVert P(x_1 - p)\rVert^2$ with $P = \mathrm{diag}(0, 1, 1)$, $p$ the spine
+/// particle's position and $w = 4A_0/h_x^4$ (the family weight $D/2$ multiplies it);
+/// gradient $2wP(x_1 - p)$, Hessian $2wP$ (constant).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpineClamp<T: Real> {
+    /// $p$: the spine particle's (fixed) position.
+    pub spine: T::Vec3,
+    /// $w = 4A_0/h_x^4$ (1/length²).
+    pub weight: T,
+}
+
+impl<T: Real> SpineClamp<T> {
+    /// $P(x - p)$.
+    #[inline]
+    fn across(&self, x: T::Vec3) -> T::Vec3 {
+        let d = x - self.spine;
+        T::Vec3::new(T::ZERO, d.y(), d.z())
+    }
+}
+
+impl<T: Real> Potential<T, 1> for SpineClamp<T> {
+    const CONSTANT_HESSIAN: bool = true;
+
+    fn value(&self, x: &NodeVecs<T, 1>) -> T {
+        let d = self.across(x[0]);
+        self.weight * d.dot(d)
+    }
+
+    fn gradient(&self, x: &NodeVecs<T, 1>) -> NodeVecs<T, 1> {
+        [self.across(x[0]) * (T::TWO * self.weight)]
+    }
+
+    fn hessian(&self, _x: &NodeVecs<T, 1>) -> Blocks<T, 1> {
+        let w = T::TWO * self.weight;
+        [[T::Mat3::diagonal(T::Vec3::new(T::ZERO, w, w))]]
+    }
+}
+
+/// The clamp's terms of `settings` (module docs): `(spine particle, neighbour, w)` per row,
+/// none unless the spine is fixed and clamped and the page has two columns or more.
+pub fn spine_clamps<T: Real>(
+    settings: &SpringSettings<T>,
+    mut each: impl FnMut(usize, usize, f64),
+) {
+    let (nx, nz) = (settings.particles_across, settings.particles_along);
+    if !(settings.fixed_spine && settings.clamped_spine) || nx < 2 {
+        return;
+    }
+    let [hx, hz] = settings.spacing().map(|h| h.to_f64());
+    let grid = QuadGrid { nx, nz };
+    for j in 0..nz {
+        let c = if j == 0 || j + 1 == nz { 0.5 } else { 1.0 };
+        let area = 0.5 * c * hx * hz;
+        each(
+            grid.index(0, j),
+            grid.index(1, j),
+            4.0 * area / (hx * hx * hx * hx),
+        );
+    }
+}
+
 /// A Gershgorin bound on the largest $\omega^2$ of the flat page's springs and plate term
 /// over the particle masses of `settings` (validated): for each particle, the springs'
 /// estimate $4\sum k$ of [`super::Integrator::SemiImplicitEuler`] plus the plate term's
@@ -216,6 +292,12 @@ pub fn omega_squared_bound<T: Real>(settings: &SpringSettings<T>) -> f64 {
                 if let Some(r) = rows.get_mut(n) {
                     *r += d * area * ca.abs() * total;
                 }
+            }
+        });
+        // The clamp's Hessian 2 (D/2) w P on the neighbour: row sum D w.
+        spine_clamps(settings, |_, k, w| {
+            if let Some(r) = rows.get_mut(k) {
+                *r += d * w;
             }
         });
     }

@@ -36,7 +36,7 @@ use folio_kernels::spring::{Spring, SpringKind};
 use folio_kernels::stencil::SquaredStencil;
 use folio_kernels::{Real, Vec3Ops, math};
 
-use super::bending::{PlateStencil, mass_share, plate_stencils};
+use super::bending::{PlateStencil, SpineClamp, mass_share, plate_stencils, spine_clamps};
 use super::settings::SpringSettings;
 use folio_solvers::model::{Model, PotentialSet, TermVisitor};
 
@@ -64,6 +64,7 @@ pub struct SpringNetwork<T: Real> {
     kinds: Vec<SpringKind>,
     plate_second: PotentialSet<T, SquaredStencil<T, 3>, 3>,
     plate_twist: PotentialSet<T, SquaredStencil<T, 4>, 4>,
+    plate_clamp: PotentialSet<T, SpineClamp<T>, 1>,
     gravity: PotentialSet<T, Gravity<T>, 1>,
     damping: PotentialSet<T, Positional<T>, 1>,
     version: u64,
@@ -162,6 +163,18 @@ impl<T: Real> SpringNetwork<T> {
                 } => push_stencil(&mut plate_twist, nodes, coefficients, area),
             });
         }
+        let mut plate_clamp = PotentialSet::new(d * T::HALF);
+        if d > T::ZERO {
+            spine_clamps(settings, |spine, k, w| {
+                plate_clamp.push(
+                    SpineClamp {
+                        spine: rest[spine],
+                        weight: T::from_f64(w),
+                    },
+                    [k as u32],
+                );
+            });
+        }
         let shares: Vec<T> = (0..grid.len())
             .map(|k| T::from_f64(mass_share(grid, k, settings.area_masses)))
             .collect();
@@ -186,6 +199,7 @@ impl<T: Real> SpringNetwork<T> {
             kinds,
             plate_second,
             plate_twist,
+            plate_clamp,
             gravity,
             damping,
             version: 0,
@@ -268,7 +282,14 @@ impl<T: Real> SpringNetwork<T> {
         &self.plate_twist
     }
 
-    /// The plate bending energy $V_{\mathrm{bend}}$ at `x`
+    /// The clamp's terms ([`super::bending::SpineClamp`]); empty unless the spine is
+    /// clamped and $D > 0$.
+    #[must_use]
+    pub fn plate_clamp(&self) -> &PotentialSet<T, SpineClamp<T>, 1> {
+        &self.plate_clamp
+    }
+
+    /// The plate bending energy $V_{\mathrm{bend}}$ (with the clamp's terms) at `x`
     /// ([`super::bending`]).
     #[must_use]
     pub fn plate_energy(&self, x: &[T::Vec3]) -> T {
@@ -287,7 +308,16 @@ impl<T: Real> SpringNetwork<T> {
             }
             e * set.weight
         }
-        family(&self.plate_second, x) + family(&self.plate_twist, x)
+        use folio_kernels::Potential;
+        let mut clamp = T::ZERO;
+        for t in self.plate_clamp.terms() {
+            if let Some(&p) = x.get(t.nodes[0] as usize) {
+                clamp += t.kernel.value(&[p]);
+            }
+        }
+        family(&self.plate_second, x)
+            + family(&self.plate_twist, x)
+            + clamp * self.plate_clamp.weight
     }
 
     /// Adds the plate bending forces $-\nabla V_{\mathrm{bend}}$ at `x` to `forces` (one per
@@ -314,6 +344,13 @@ impl<T: Real> SpringNetwork<T> {
         }
         family(&self.plate_second, x, forces);
         family(&self.plate_twist, x, forces);
+        use folio_kernels::Potential;
+        for t in self.plate_clamp.terms() {
+            let k = t.nodes[0] as usize;
+            if let (Some(&p), Some(f)) = (x.get(k), forces.get_mut(k)) {
+                *f -= t.kernel.gradient(&[p])[0] * self.plate_clamp.weight;
+            }
+        }
     }
 
     /// Sets the role of particle `k` (ignored out of range), bumping the topology version
@@ -373,6 +410,9 @@ impl<T: Real> Model<T> for SpringNetwork<T> {
         }
         if !self.plate_twist.terms().is_empty() {
             visitor.potentials(&self.plate_twist);
+        }
+        if !self.plate_clamp.terms().is_empty() {
+            visitor.potentials(&self.plate_clamp);
         }
         visitor.potentials(&self.gravity);
         visitor.potentials(&self.damping);

@@ -135,6 +135,10 @@ pub struct SpringSettings<T: Real> {
     /// The particle column at $u = 0$ is fixed at rest (the seed's fixed edge, Sec. 3.1
     /// step 2).
     pub fixed_spine: bool,
+    /// With `fixed_spine` and a plate term ($D > 0$): the spine is a clamp, holding the
+    /// page's tangent there along $\pm X$ by a ghost particle mirrored across the spine
+    /// ([`super::bending::SpineClamp`]). Off (the default): a hinge.
+    pub clamped_spine: bool,
     /// How the free particles are advanced.
     pub integrator: Integrator,
     /// Synchronize along the dog-ear line after each substep (seed Sec. 2.2.1,
@@ -212,6 +216,7 @@ impl<T: Real> Default for SpringSettings<T> {
             key_frame_capacity: 100,
             grip: Grip::Edge,
             fixed_spine: true,
+            clamped_spine: false,
             integrator: Integrator::SemiImplicitEuler,
             sync: true,
             floor: true,
@@ -273,6 +278,7 @@ impl<T: Real> SpringSettings<T> {
             key_frame_capacity: 100,
             grip: Grip::Edge,
             fixed_spine: true,
+            clamped_spine: false,
             integrator: Integrator::SemiImplicitEuler,
             sync: true,
             floor: false,
@@ -296,7 +302,8 @@ impl<T: Real> SpringSettings<T> {
     ///   default's ratio);
     /// - the damping at the default's rate, $c/m = -0.7125\ \mathrm{s}^{-1}$.
     ///
-    /// The rest are the defaults ([`SpringSettings::default`]); the caller picks the
+    /// The rest are the defaults ([`SpringSettings::default`]: the spine fixed as a hinge;
+    /// [`SpringSettings::clamped_spine`] makes it a clamp); the caller picks the
     /// integrator and substeps (the explicit one must pass [`SpringSettings::validate`]; a
     /// stiff page needs more substeps, [`super::bending::omega_squared_bound`]).
     #[must_use]
