@@ -152,6 +152,12 @@ mod tests {
         assert_eq!(round_trip(&spring), spring);
         let cone = ConeSettings::<f64>::default();
         assert_eq!(round_trip(&cone), cone);
+        let xpbd = folio_pages::xpbd::XpbdSettings::<f64> {
+            substeps: 96,
+            spine: folio_pages::xpbd::Spine::Clamp,
+            ..folio_pages::xpbd::XpbdSettings::default()
+        };
+        assert_eq!(round_trip(&xpbd), xpbd);
         let mut sheet = SheetSettings::<f64>::default();
         sheet.tearing.fibers.seed = 99;
         assert_eq!(round_trip(&sheet), sheet);

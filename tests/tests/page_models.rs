@@ -373,3 +373,71 @@ fn the_xpbd_page_turns_with_bounded_stretch() {
         assert!(gap <= 1e-3, "{name}: finger gap {gap}");
     }
 }
+
+/// Bad XPBD settings are refused with a typed error naming the field, never a panic.
+#[test]
+fn the_xpbd_page_refuses_bad_settings() {
+    let d = XpbdSettings::<f32>::default();
+    let cases = [
+        (
+            "quads_across",
+            XpbdSettings {
+                quads_across: 1,
+                ..d
+            },
+        ),
+        (
+            "width",
+            XpbdSettings {
+                width: f32::NAN,
+                ..d
+            },
+        ),
+        (
+            "areal_density",
+            XpbdSettings {
+                areal_density: 0.0,
+                ..d
+            },
+        ),
+        (
+            "bending_stiffness",
+            XpbdSettings {
+                bending_stiffness: -1.0,
+                ..d
+            },
+        ),
+        (
+            "bending_stiffness",
+            XpbdSettings {
+                bending_stiffness: 1e-40,
+                ..d
+            },
+        ),
+        (
+            "shear_compliance",
+            XpbdSettings {
+                shear_compliance: f32::INFINITY,
+                ..d
+            },
+        ),
+        ("substeps", XpbdSettings { substeps: 0, ..d }),
+        (
+            "iterations",
+            XpbdSettings {
+                iterations: 65,
+                ..d
+            },
+        ),
+        ("width", XpbdSettings { width: 1e-30, ..d }),
+    ];
+    for (field, s) in cases {
+        match XpbdPage::new(s) {
+            Err(PageError::InvalidInput { what }) => {
+                assert!(what.starts_with(field), "{field}: {what}");
+            }
+            other => panic!("{field}: {:?}", other.map(|_| ())),
+        }
+    }
+    assert!(XpbdPage::new(d).is_ok());
+}
