@@ -556,14 +556,7 @@ impl<T: Real> PageModel<T> for SpringPage<T> {
     /// other side, or of a stack, is refused.
     fn grab_page(&mut self, side: BlockSide, pages: u32, at: [T; 2]) -> Result<(), PageError> {
         super::one_page(pages)?;
-        let n = T::from_f64(self.state.x.len().max(1) as f64);
-        let mean_x = self.state.x.iter().fold(T::ZERO, |m, p| m + p.x()) / n;
-        let lies = if mean_x < T::ZERO {
-            BlockSide::Left
-        } else {
-            BlockSide::Right
-        };
-        if side != lies {
+        if side != super::lying_side::<T>(&self.state.x) {
             return Err(PageError::Gesture(super::GestureError::NoPage {
                 side,
                 model: "mass-spring",
