@@ -134,7 +134,7 @@ impl Paper {
     /// The sag number $\alpha = \rho g L^3 / D$ (module docs).
     #[must_use]
     pub fn sag_number(&self) -> f64 {
-        self.areal_density * GRAVITY * self.width.powi(3) / self.bending_stiffness
+        self.areal_density * GRAVITY * self.width * self.width * self.width / self.bending_stiffness
     }
 
     /// The book units of `settings` with this paper applied ([`BookUnits`]).
