@@ -8,6 +8,8 @@
 //!   binding edge, hard cover.
 //! - [`settings`]: [`BookSettings`] and the solver-facing [`Weights`]; [`effects`]: the
 //!   effects a scene calls for ([`Effects`]), each building no term when off.
+//! - [`quadrature`]: the page's bending and masses as a quadrature over the page, and the
+//!   bending stiffness $D$ its weight stands for.
 //! - [`model`], [`terms`]: the book as a model: nodes, masses, eliminated coordinates, the
 //!   constraint and potential families of eq. 5-14.
 //! - [`simulation`]: [`Book`], a frame = one implicit step plus collisions and the
@@ -39,6 +41,8 @@ pub mod layout;
 mod merge;
 pub mod mesh;
 pub mod model;
+pub mod paper;
+pub mod quadrature;
 pub mod script;
 pub mod settings;
 pub mod simulation;
@@ -50,6 +54,7 @@ pub use error::BookError;
 pub use interaction::{Ray, Tent};
 pub use layout::{BlockSide, BookLayout, BookParams, LayoutError};
 pub use model::{BookTerms, Family, NodeMap};
+pub use paper::{BookUnits, Paper};
 pub use script::{Action, Event, Script, ScriptError};
 pub use settings::{BookSettings, WEIGHT_RANGES, Weights};
 pub use simulation::{

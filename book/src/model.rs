@@ -13,7 +13,7 @@ use folio_geometry::{QuadGrid, Star};
 use folio_kernels::binding::Binding;
 use folio_kernels::contact::ContactPlane;
 use folio_kernels::curve_laplacian::{self, CurveLaplacian};
-use folio_kernels::dog_laplacian::{self, DogLaplacianBoundary, DogLaplacianInner};
+use folio_kernels::dog_laplacian::{DogLaplacianBoundary, DogLaplacianInner};
 use folio_kernels::fix::Fix;
 use folio_kernels::glue::Glue;
 use folio_kernels::gravity::Gravity;
@@ -22,6 +22,7 @@ use folio_kernels::iso3d::Iso3d;
 use folio_kernels::{KernelError, Real, Vec3Ops};
 
 use super::effects::Effects;
+use super::quadrature::{self, PageBending};
 use super::settings::BookSettings;
 use super::terms::{Contact, DogBoundary, DogInner, Grip, PlanarFix, Pull};
 use folio_solvers::model::{ConstraintSet, Model, PotentialSet, TermVisitor};
@@ -102,7 +103,7 @@ pub enum Family {
     Dog,
     /// The bound column's binding (eq. 7).
     Binding,
-    /// DOG-Laplacian bending of the page (eq. 9).
+    /// DOG-Laplacian bending of the page (eq. 10), area-weighted ([`quadrature`]).
     PageBending,
     /// Soft isometry of the page (eq. 13).
     PageIso,
@@ -281,24 +282,27 @@ impl<T: Real> BookTerms<T> {
             if ga.1 == gb.1 { spacing[0] } else { spacing[1] }
         };
         let po = self.nodes.page_offset();
+        let rest_spacing = settings.grid_spacing();
         for star in grid.stars() {
             match star {
                 Star::Inner(s) => {
                     self.dog_inner
                         .push(DogInner::default(), as_u32(s.map(|k| po + k)));
-                    let rest = [1, 2, 3, 4].map(|k| rest_of(s[0], s[k]));
-                    let lap = dog_laplacian::inner(rest)?;
-                    self.bend_inner.push(lap, as_u32(s.map(|k| po + k)));
                 }
                 Star::Boundary(s) => {
                     self.dog_boundary
                         .push(DogBoundary::default(), as_u32(s.map(|k| po + k)));
-                    let rest = [rest_of(s[0], s[1]), rest_of(s[0], s[3])];
-                    let lap = dog_laplacian::boundary(rest)?;
-                    self.bend_boundary
-                        .push(lap, as_u32([s[0], s[1], s[3]].map(|k| po + k)));
                 }
                 Star::Corner(_) => {}
+            }
+            match quadrature::bending(grid, rest_spacing, star)? {
+                Some(PageBending::Inner(lap, s)) => {
+                    self.bend_inner.push(lap, as_u32(s.map(|k| po + k)));
+                }
+                Some(PageBending::Boundary(lap, s)) => {
+                    self.bend_boundary.push(lap, as_u32(s.map(|k| po + k)));
+                }
+                None => {}
             }
         }
         for j in 0..grid.nz {
@@ -414,7 +418,9 @@ impl<T: Real> BookTerms<T> {
     }
 
     /// Spreads `left` and `right` block masses over their midlines, `cover` on each cover
-    /// node, and `page` over the page grid; updates the gravity terms.
+    /// node, and `page` over the page grid by the nodes' dual-cell areas
+    /// ([`quadrature::mass_fraction`]: a quarter cell at a corner, half on an edge);
+    /// updates the gravity terms.
     pub fn set_masses(&mut self, left: T, right: T, cover: T, page: T) {
         let n = self.nodes;
         let per = |total: T, count: usize| total / T::from_f64(count as f64);
@@ -426,8 +432,9 @@ impl<T: Real> BookTerms<T> {
             self.set_mass(n.cover_end(false), cover);
             self.set_mass(n.cover_end(true), cover);
         }
-        for k in n.page_offset()..n.total() {
-            self.set_mass(k, per(page, n.grid.len()));
+        for k in 0..n.grid.len() {
+            let share = T::from_f64(quadrature::mass_fraction(n.grid, k));
+            self.set_mass(n.page_offset() + k, page * share);
         }
         let g = self.g;
         let masses = &self.masses;
@@ -750,7 +757,9 @@ mod tests {
         assert_eq!(t.mass(n.block(false, 1)), 5.0 / m);
         assert_eq!(t.mass(n.block(true, 1)), 10.0 / m);
         assert_eq!(t.mass(n.cover_end(true)), 3.0);
-        assert_eq!(t.mass(n.page(1, 1)), 1.0 / n.grid.len() as f64);
+        let cells = ((n.grid.nx - 1) * (n.grid.nz - 1)) as f64;
+        assert_eq!(t.mass(n.page(1, 1)), 1.0 / cells);
+        assert_eq!(t.mass(n.page(0, 0)), 0.25 / cells);
         let [a, b] = [t.pull_nodes()[0], t.pull_nodes()[1]];
         let target = <f64 as Real>::Vec3::new(1.0, 2.0, 3.0);
         t.set_pull(Some((a, target)));

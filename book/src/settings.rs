@@ -17,7 +17,12 @@ use folio_solvers::settings::Settings;
 )]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Weights<T: Real> {
-    /// $w_{\mathrm{bend3D}}$, DOG-Laplacian bending of the active page (120).
+    /// $w_{\mathrm{bend3D}}$, DOG-Laplacian bending of the active page, area-weighted
+    /// ([`crate::quadrature`]): the page's bending stiffness is $D = 2 w_{\mathrm{bend3D}}$
+    /// at every grid. Default 172: the seed's 120 with its unweighted terms, which made the
+    /// page 1.43 times stiffer at the 8x11 grid (so the same page as before there; at 120
+    /// with the weighted terms a page grabbed at its fore-edge and dragged low towards the
+    /// spine arched against the drag instead of turning, and `three-and-back` kept 51/49).
     pub bend_page: T,
     /// $w_{\mathrm{bend2D}}$, curve-Laplacian bending of the block midlines (200).
     pub bend_blocks: T,
@@ -93,7 +98,7 @@ impl<T: Real> Weights<T> {
 impl<T: Real> Default for Weights<T> {
     fn default() -> Self {
         Self {
-            bend_page: T::from_f64(120.0),
+            bend_page: T::from_f64(172.0),
             bend_blocks: T::from_f64(200.0),
             glue: T::from_f64(600.0),
             iso_page: T::from_f64(4000.0),
@@ -204,10 +209,10 @@ pub struct BookSettings<T: Real> {
     /// the normal speed it gave. Default 0, the seed's frictionless contact (friction does
     /// not help a page settle; the module docs give the measurements).
     pub contact_friction: T,
-    /// Weight multiplier of the nodes a collision pushed in this step during the projection
-    /// (they stay on the surface that pushed them): the weight of the last passes, reached
-    /// from 10 by a factor 10 per pass (`collide::pin_weight` gives why and the
-    /// measurements). At least 1; default $10^3$.
+    /// Weight multiplier of the nodes a collision pushed in this step during the projection,
+    /// along the normal of the surface that pushed them (they slide along it, and the
+    /// constraints may lift them off; `Book::project` in `collide.rs` gives why). At least
+    /// 1; default $10^3$.
     pub contact_pin_weight: T,
     /// Collision detect/resolve rounds per step (the seed's "at most three times").
     pub collision_rounds: u32,
@@ -297,9 +302,14 @@ impl<T: Real> BookSettings<T> {
     /// cell area over this grid's. Per edge the iso3D energy of a uniform strain
     /// $\varepsilon$ is $4\varepsilon^2 h^4$ and there are $\sim 2A_{page}/h^2$ edges, so the
     /// sum scales with $h^2$; the factor makes the page's stretch stiffness independent of
-    /// the grid. Bending needs no factor: the DOG Laplacian divides by the rest lengths, so
-    /// its sum over a page bent with curvature $\kappa$ is $\approx A_{page}\kappa^2$ at any
-    /// resolution. Masses are the page mass spread over the nodes.
+    /// the grid. Bending has no factor, but its sum is not resolution-invariant as this doc
+    /// once claimed: the DOG Laplacian divides by the rest lengths, so an inner vertex adds
+    /// $h^2\kappa^2$ at any spacing, but the 3-neighbour edge rows add $4h^2\kappa^2$ on
+    /// half a cell (8 times their share). On a page rolled across its rows the sum is
+    /// $\kappa^2 h^2 (n_x - 2)(n_y + 6)$ against $A_{page}\kappa^2$: 1.43 times at 8x11,
+    /// 1.24 at 16x22, falling only as $1/n$. The book uses the area-weighted terms and
+    /// masses of [`crate::quadrature`] instead, which converge at every grid (with
+    /// $D = 2 w_{\mathrm{bend3D}}$).
     #[must_use]
     pub fn iso_scale(&self) -> f64 {
         let [across, along] = self.grid_spacing();

@@ -173,6 +173,10 @@ pub struct Book<T: Real> {
     pub(crate) flips: Vec<Flip<T>>,
     /// Nodes a collision pushed in the current step (pinned by the projection).
     pub(crate) pushed: Vec<bool>,
+    /// Per node, the normal of the surface that pushed it in the current step (zero when
+    /// two surfaces of different normals pushed it): the projection holds it along this
+    /// normal and lets it slide along the surface.
+    pub(crate) pushed_normal: Vec<T::Vec3>,
     /// The broad phase of the active page's collisions.
     pub(crate) broad: PageBroadPhase<T>,
     /// The terms of the rest view and of the active view.
@@ -218,6 +222,7 @@ impl<T: Real> Book<T> {
             active: 0,
         };
         let pushed = alloc::vec![false; n.total()];
+        let pushed_normal = alloc::vec![T::Vec3::ZERO; n.total()];
         let mut book = Self {
             rest_solver: Solver::new(settings.solver)?,
             active_solver: Solver::new(settings.solver)?,
@@ -241,6 +246,7 @@ impl<T: Real> Book<T> {
             ),
             flips: Vec::with_capacity(settings.max_flips),
             pushed,
+            pushed_normal,
             broad: PageBroadPhase::new(n),
             census: [TermCensus::default(); 2],
         };

@@ -14,11 +14,12 @@ use folio_pages::cone::{ConePage, ConeSettings};
 use folio_pages::dog::DogPage;
 use folio_pages::spring::SpringPage;
 use folio_pages::touch::Touch;
+use folio_pages::xpbd::XpbdPage;
 use folio_pages::{Gestures, PageModel, PageStatus, TouchScript, frame_metrics};
 use folio_tearing::sheet::TearingSheet;
 
 use folio_scene::events;
-use folio_scene::settings::{book_settings, spring_settings};
+use folio_scene::settings::{book_settings, spring_settings, xpbd_settings};
 use serde::Serialize;
 
 use folio_scene::fixtures::{self, Kind};
@@ -323,6 +324,10 @@ pub fn run(
             ModelKind::MassSpring => {
                 let s = spring_settings(scene, seed);
                 other = Some(Box::new(SpringPage::new(s).map_err(fail)?));
+            }
+            ModelKind::Xpbd => {
+                let s = xpbd_settings(scene, seed);
+                other = Some(Box::new(XpbdPage::new(s).map_err(fail)?));
             }
             ModelKind::Dog => dog = Some(DogPage::new(book_settings(scene)).map_err(fail)?),
             ModelKind::Sheet => return Err(fail("a sheet is held by hands")),

@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-const SCENES: [&str; 8] = [
+const SCENES: [&str; 9] = [
     "page-turn",
     "peek",
     "bookmark-flip",
@@ -14,6 +14,7 @@ const SCENES: [&str; 8] = [
     "three-and-back",
     "cone-turn",
     "mass-spring-turn",
+    "xpbd-turn",
 ];
 
 /// The tearing sheet's built-in scenes (seed 002 Fig. 13-16).

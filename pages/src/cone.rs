@@ -35,6 +35,11 @@
 //!
 //! The page has no thickness: [`super::mesh`] gives it the paper thickness it is asked for,
 //! with the back face oriented for rendering.
+//!
+//! **No physical units.** The curl is pure geometry: an isometric map of the flat page
+//! chosen by schedule or by fit, with no stiffness, no mass and no gravity. A bending
+//! stiffness $D$ and an areal density (issue 21, as the mass-spring page takes them,
+//! `spring::bending`) do not apply to it, and it cannot sag.
 
 use folio_geometry::{BlockSide, QuadGrid};
 use folio_kernels::cone::{ConeCurl, LANES};

@@ -5,7 +5,9 @@
 //! - [`cone::ConePage`], the conical curl of seed `001_…`: a closed-form map, the cheapest;
 //! - [`spring::SpringPage`], the mass-spring page of seed `003_…` (and
 //!   [`spring::ReplayPage`], its key-frame playback);
-//! - [`dog::DogPage`], the active page of the DOG book of seed `000_…`, the most accurate.
+//! - [`dog::DogPage`], the active page of the DOG book of seed `000_…`, the most accurate;
+//! - [`xpbd::XpbdPage`], a peer from games: an inextensible particle page with isometric
+//!   bending solved by XPBD in small steps.
 //!
 //! **The page frame.** Every model reports its page in one frame: the flat page at rest is
 //! $\lbrace(u, 0, v) : u \in [0, W],\ v \in [0, H]\rbrace$, with the spine along Z through the origin,
@@ -23,7 +25,7 @@
 //!
 //! Layers: `folio-kernels`, `folio-geometry` (render grid, page mesh) and `folio-solvers`
 //! (the implicit step of the mass-spring page) below; the DOG page wraps `folio-book`
-//! (feature `dog`). Features: `std`, `cone`, `mass-spring`, `dog`.
+//! (feature `dog`). Features: `std`, `cone`, `mass-spring`, `dog`, `xpbd`.
 #![cfg_attr(not(feature = "std"), no_std)]
 
 extern crate alloc;
@@ -37,6 +39,8 @@ pub mod metrics;
 #[cfg(feature = "mass-spring")]
 pub mod spring;
 pub mod touch;
+#[cfg(feature = "xpbd")]
+pub mod xpbd;
 
 use folio_geometry::QuadGrid;
 use folio_geometry::mesh::{MeshError, TriMesh, page_mesh};
@@ -129,7 +133,7 @@ pub struct PageStep<T> {
 /// A simulated or animated page (module docs). Object safe: a scene holds a
 /// `Box<dyn PageModel<T>>` and switches models without touching anything else.
 pub trait PageModel<T: Real> {
-    /// A short name for reports (`"dog"`, `"cone"`, `"mass-spring"`).
+    /// A short name for reports (`"dog"`, `"cone"`, `"mass-spring"`, `"xpbd"`).
     fn name(&self) -> &'static str;
 
     /// Page width $W$ and height $H$ (page units).
@@ -191,6 +195,19 @@ pub fn one_page(pages: u32) -> Result<(), PageError> {
         Ok(())
     } else {
         Err(PageError::Gesture(GestureError::Stack { pages }))
+    }
+}
+
+/// The side of the spine a one-page model's page lies on: left when the mean X of its
+/// points `x` is negative, else right.
+#[must_use]
+pub fn lying_side<T: Real>(x: &[T::Vec3]) -> BlockSide {
+    let n = T::from_f64(x.len().max(1) as f64);
+    let mean_x = x.iter().fold(T::ZERO, |m, p| m + p.x()) / n;
+    if mean_x < T::ZERO {
+        BlockSide::Left
+    } else {
+        BlockSide::Right
     }
 }
 

@@ -1,7 +1,7 @@
 //! The built-in scenes (`scenes/*.toml`, embedded in the binary).
 
 /// Name and text of every built-in scene; the first is the default.
-pub const SCENES: [(&str, &str); 12] = [
+pub const SCENES: [(&str, &str); 13] = [
     ("page-turn", include_str!("../../scenes/page-turn.toml")),
     ("peek", include_str!("../../scenes/peek.toml")),
     (
@@ -19,6 +19,7 @@ pub const SCENES: [(&str, &str); 12] = [
         "mass-spring-turn",
         include_str!("../../scenes/mass-spring-turn.toml"),
     ),
+    ("xpbd-turn", include_str!("../../scenes/xpbd-turn.toml")),
     (
         "tear-straight",
         include_str!("../../scenes/tear-straight.toml"),

@@ -129,6 +129,8 @@ pub enum ModelKind {
     Cone,
     /// The mass-spring page of seed 003.
     MassSpring,
+    /// The position-based page: XPBD distance and isometric bending constraints.
+    Xpbd,
     /// The tearing sheet of seed 002, held and pulled by hands.
     Sheet,
 }
@@ -156,6 +158,7 @@ impl ModelKind {
             Self::Dog => "dog",
             Self::Cone => "cone",
             Self::MassSpring => "mass-spring",
+            Self::Xpbd => "xpbd",
             Self::Sheet => "sheet",
         }
     }
@@ -173,7 +176,7 @@ impl ModelKind {
                 "bookmarking",
             ],
             Self::Cone => &[],
-            Self::MassSpring => &["gravity", "collisions"],
+            Self::MassSpring | Self::Xpbd => &["gravity", "collisions"],
             Self::Sheet => &["gravity", "bending", "cones", "tearing"],
         }
     }
@@ -183,13 +186,13 @@ impl ModelKind {
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSection {
-    /// Time step (seconds; DOG and mass-spring).
+    /// Time step (seconds; DOG, mass-spring, xpbd and sheet).
     pub time_step: Option<Spanned<f64>>,
     /// Newton iterations per step (DOG; the seed's one).
     pub newton_iterations: Option<Spanned<u32>>,
     /// Constraint projection iterations after a step (DOG; 0 is the seed's plain step).
     pub max_corrections: Option<Spanned<u32>>,
-    /// Substeps per frame (mass-spring).
+    /// Substeps per frame (mass-spring, 1 to 64; xpbd, 1 to 1024).
     pub substeps: Option<Spanned<u32>>,
 }
 
@@ -488,6 +491,7 @@ impl Scene {
                 .and_then(|()| crate::book::check_reach(self))
                 .map_err(at),
             ModelKind::MassSpring => self.check_spring().map_err(at),
+            ModelKind::Xpbd => self.check_xpbd().map_err(at),
             _ => Ok(()),
         }
     }
@@ -606,7 +610,7 @@ impl Scene {
         if model == ModelKind::Cone {
             return bad(
                 section.span(),
-                "[solver] is for the dog, mass-spring and sheet models",
+                "[solver] is for the dog, mass-spring, xpbd and sheet models",
             );
         }
         let s = section.get_ref();
@@ -636,14 +640,21 @@ impl Scene {
             }
         }
         if let Some(v) = &s.substeps {
-            if model != ModelKind::MassSpring {
+            let most = match model {
+                ModelKind::MassSpring => 64,
+                ModelKind::Xpbd => folio_pages::xpbd::MAX_SUBSTEPS,
+                _ => {
+                    return bad(
+                        v.span(),
+                        "solver.substeps is for model = \"mass-spring\" or \"xpbd\" only",
+                    );
+                }
+            };
+            if !(1..=most).contains(v.get_ref()) {
                 return bad(
                     v.span(),
-                    "solver.substeps is for model = \"mass-spring\" only",
+                    &format!("solver.substeps must be between 1 and {most}"),
                 );
-            }
-            if !(1..=64).contains(v.get_ref()) {
-                return bad(v.span(), "solver.substeps must be between 1 and 64");
             }
         }
         Ok(())
@@ -652,24 +663,39 @@ impl Scene {
     /// The mass-spring page's settings as `folio run` builds them, checked by the page's
     /// own `validate()` (reported at `[solver]`, the only keys a scene sets).
     fn check_spring(&self) -> Result<(), (Range<usize>, String)> {
-        let seed = self
-            .input
+        let checked = crate::settings::spring_settings(self, self.seed_fixture()).validate();
+        self.refused_settings("mass-spring", checked)
+    }
+
+    /// The XPBD page's settings as `folio run` builds them, checked by the page's own
+    /// `validate()` (reported at `[solver]`, the only keys a scene sets).
+    fn check_xpbd(&self) -> Result<(), (Range<usize>, String)> {
+        let checked = crate::settings::xpbd_settings(self, self.seed_fixture()).validate();
+        self.refused_settings("xpbd", checked)
+    }
+
+    /// A page model's refusal of its settings, reported at `[solver]` (or the input).
+    fn refused_settings(
+        &self,
+        model: &str,
+        checked: Result<(), folio_pages::PageError>,
+    ) -> Result<(), (Range<usize>, String)> {
+        checked.map_err(|e| {
+            let span = self
+                .solver
+                .as_ref()
+                .map_or(self.input.span(), Spanned::span);
+            (span, format!("the {model} page refuses its settings: {e}"))
+        })
+    }
+
+    /// `true` when the input is seed 003's experiment (`fixture = "seed003-turn"`).
+    fn seed_fixture(&self) -> bool {
+        self.input
             .get_ref()
             .fixture
             .as_ref()
-            .is_some_and(|f| f.get_ref() == "seed003-turn");
-        crate::settings::spring_settings(self, seed)
-            .validate()
-            .map_err(|e| {
-                let span = self
-                    .solver
-                    .as_ref()
-                    .map_or(self.input.span(), Spanned::span);
-                (
-                    span,
-                    format!("the mass-spring page refuses its settings: {e}"),
-                )
-            })
+            .is_some_and(|f| f.get_ref() == "seed003-turn")
     }
 
     fn check_input(&self, text: &str, model: ModelKind) -> Result<(), SceneError> {

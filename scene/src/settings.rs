@@ -1,10 +1,11 @@
 //! The solver settings a scene describes: the DOG book's (book, effects, weights, solver),
-//! the mass-spring page's (effects, solver) and the tearing sheet's (sheet, tearing,
+//! the mass-spring and XPBD pages' (effects, solver) and the tearing sheet's (sheet, tearing,
 //! effects, solver). Shared by the `folio` command and the C API's scene constructor.
 
 use folio_book::{BookSettings, Effects};
 use folio_kernels::Real;
 use folio_pages::spring::SpringSettings;
+use folio_pages::xpbd::XpbdSettings;
 use folio_tearing::sheet::{SheetEffects, SheetSettings};
 
 use crate::scene::Scene;
@@ -52,6 +53,28 @@ pub fn spring_settings(scene: &Scene, seed: bool) -> SpringSettings<f64> {
     };
     if !scene.has_effect("gravity") {
         s.particle_weight = 0.0;
+    }
+    s.floor = scene.has_effect("collisions");
+    if let Some(solver) = &scene.solver {
+        let v = solver.get_ref();
+        set(&mut s.time_step, v.time_step.as_ref());
+        set(&mut s.substeps, v.substeps.as_ref());
+    }
+    s
+}
+
+/// The XPBD page's settings of a scene: its defaults (on seed 003's fixture, its
+/// $25 \times 25$ page of unit mass, as the cone takes there); its effects (gravity, the
+/// table) and solver settings (time step, substeps).
+#[must_use]
+pub fn xpbd_settings(scene: &Scene, seed: bool) -> XpbdSettings<f64> {
+    let mut s = XpbdSettings::default();
+    if seed {
+        (s.width, s.height) = (25.0, 25.0);
+        s.areal_density = 1.0 / (25.0 * 25.0);
+    }
+    if !scene.has_effect("gravity") {
+        s.gravity = 0.0;
     }
     s.floor = scene.has_effect("collisions");
     if let Some(solver) = &scene.solver {
@@ -129,6 +152,12 @@ mod tests {
         assert_eq!(round_trip(&spring), spring);
         let cone = ConeSettings::<f64>::default();
         assert_eq!(round_trip(&cone), cone);
+        let xpbd = folio_pages::xpbd::XpbdSettings::<f64> {
+            substeps: 96,
+            spine: folio_pages::xpbd::Spine::Clamp,
+            ..folio_pages::xpbd::XpbdSettings::default()
+        };
+        assert_eq!(round_trip(&xpbd), xpbd);
         let mut sheet = SheetSettings::<f64>::default();
         sheet.tearing.fibers.seed = 99;
         assert_eq!(round_trip(&sheet), sheet);

@@ -57,4 +57,4 @@ pub use ordering::Ordering;
 pub use report::{StepReport, StepStatus};
 pub use ring::Ring;
 pub use settings::{Parallelism, Settings};
-pub use step::{Correction, Solver, State};
+pub use step::{Correction, Pins, Solver, State};

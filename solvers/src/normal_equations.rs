@@ -84,6 +84,8 @@ pub struct NormalEquations<T> {
     pub(crate) inverse_w: Vec<T>,
     /// Dense accumulator of one column of $S$, zero between uses.
     column: Vec<T>,
+    /// The rows one node's dofs touch ([`NormalEquations::pin_along`]), capacity `rows`.
+    touched: Vec<u32>,
     pivot_scale: Vec<T>,
     /// The conjugate gradients' residual, preconditioned residual, direction and product.
     residual: Vec<T>,
@@ -109,6 +111,7 @@ impl<T: Real> NormalEquations<T> {
             pattern,
             inverse_w: vec![T::ZERO; dofs],
             column: vec![T::ZERO; rows],
+            touched: Vec::with_capacity(rows),
             pivot_scale: vec![T::ONE; rows],
             residual: vec![T::ZERO; rows],
             preconditioned: vec![T::ZERO; rows],
@@ -176,6 +179,56 @@ impl<T: Real> NormalEquations<T> {
             if let Some(diagonal) = self.values[range].last_mut() {
                 *diagonal = mul_add(*diagonal, damping, *diagonal);
             }
+        }
+    }
+
+    /// Makes one node's $W^{-1}$ block anisotropic after [`NormalEquations::assemble`]:
+    /// $W_i^{-1} = w_i^{-1} I - c\thinspace n n^\top$ on its three dofs `dofs`, with $n$ =
+    /// `normal` (unit) and $0 \le c \le w_i^{-1}$, so that the node moves freely along its
+    /// contact surface and $c\thinspace w_i$ less (not at all for $c = w_i^{-1}$) along $n$.
+    /// Since $S = \sum_i J_i W_i^{-1} J_i^\top$ over the nodes' column blocks $J_i$, this
+    /// subtracts the rank-one term $c\thinspace u u^\top$, $u = J_i n$, from the rows the
+    /// node touches, its diagonal scaled by $1 + \rho$ as [`NormalEquations::assemble`]
+    /// scales it. A pair of rows that share none of the node's dofs (a row on its $x$ alone
+    /// and one on its $z$ alone) has no slot in $S$'s pattern and keeps its isotropic
+    /// value; the book's pinned page nodes have none (their DOG rows hold all three dofs).
+    /// [`NormalEquations::back_substitute`] does not know of it: the caller applies
+    /// [`slide`] to the node's $\delta$ with $c\thinspace w_i$.
+    pub fn pin_along(
+        &mut self,
+        kkt_values: &[T],
+        dofs: [usize; 3],
+        normal: [T; 3],
+        c: T,
+        damping: T,
+    ) {
+        self.touched.clear();
+        for (&d, &n) in dofs.iter().zip(&normal) {
+            let (column, touched) = (&mut self.column, &mut self.touched);
+            self.transpose.for_each(d, kkt_values, |a, j_ad| {
+                if !touched.contains(&(a as u32)) {
+                    touched.push(a as u32);
+                }
+                column[a] = mul_add(column[a], j_ad, n);
+                true
+            });
+        }
+        for (k, &p) in self.touched.iter().enumerate() {
+            for &q in &self.touched[..=k] {
+                let (a, b) = if p <= q { (p, q) } else { (q, p) };
+                let (a, b) = (a as usize, b as usize);
+                let range = self.pattern.col_ptr[b] as usize..self.pattern.col_ptr[b + 1] as usize;
+                let Ok(slot) = self.pattern.row_idx[range.clone()].binary_search(&(a as u32))
+                else {
+                    continue;
+                };
+                let scale = if a == b { T::ONE + damping } else { T::ONE };
+                let v = &mut self.values[range.start + slot];
+                *v = mul_sub(*v, c * scale * self.column[a], self.column[b]);
+            }
+        }
+        for &a in &self.touched {
+            self.column[a as usize] = T::ZERO;
         }
     }
 
@@ -323,6 +376,20 @@ impl<T: Real> NormalEquations<T> {
 /// setup code, compiled once for every value type and with this crate's optimization
 /// settings (the firmware optimizes this crate for size).
 #[inline(never)]
+/// The back-substitution of a node pinned along `normal` ([`NormalEquations::pin_along`]):
+/// with $\delta_i = -w_i^{-1} g$ the isotropic step, its anisotropic one is
+/// $-(w_i^{-1} I - c\thinspace n n^\top) g = \delta_i - c\thinspace w_i\thinspace n (n\cdot\delta_i)$;
+/// `held` $= c\thinspace w_i \in [0, 1]$.
+pub fn slide<T: Real>(delta: &mut [T], dofs: [usize; 3], normal: [T; 3], held: T) {
+    let along = dofs
+        .iter()
+        .zip(&normal)
+        .fold(T::ZERO, |s, (&d, &n)| mul_add(s, delta[d], n));
+    for (&d, &n) in dofs.iter().zip(&normal) {
+        delta[d] = mul_sub(delta[d], held * along, n);
+    }
+}
+
 fn structure(kkt: &KktPattern) -> (Transpose, KktPattern, Symbolic) {
     let rows = kkt.rows;
     let transpose = Transpose::new(kkt);
@@ -411,6 +478,75 @@ mod tests {
         }
         // The chain's rows share nodes: S is not diagonal.
         assert!(s[0][1] != 0.0);
+    }
+
+    /// A node held along a normal ([`NormalEquations::pin_along`] and [`super::slide`]):
+    /// $S$ is $J W^{-1} J^\top$ with the node's block $w^{-1} I - c\thinspace n n^\top$, and
+    /// the step solves $W\delta + J^\top\mu = 0$, $J\delta = -C$ with that block, so that
+    /// the node moves along the normal by $1 - c\thinspace w$ of what it would.
+    #[test]
+    fn a_node_held_along_a_normal_solves_the_anisotropic_system() {
+        let (pattern, values, j, mut inverse_w) = chain();
+        let node = 2;
+        let dofs: [usize; 3] = core::array::from_fn(|a| pattern.dof_of()[3 * node + a] as usize);
+        let w_inv = inverse_w[dofs[0]];
+        for &d in &dofs {
+            inverse_w[d] = w_inv;
+        }
+        let n = [0.48, -0.6, 0.64];
+        let c = 0.999 * w_inv;
+        let mut normal = assembled(&pattern, &values, &inverse_w);
+        normal.pin_along(&values, dofs, n, c, 0.0);
+        // The dense W^{-1}: diagonal, with the node's 3x3 block.
+        let dofs_n = pattern.dofs;
+        let mut w = vec![vec![0.0; dofs_n]; dofs_n];
+        for d in 0..dofs_n {
+            w[d][d] = inverse_w[d];
+        }
+        for (a, &da) in dofs.iter().enumerate() {
+            for (b, &db) in dofs.iter().enumerate() {
+                w[da][db] -= c * n[a] * n[b];
+            }
+        }
+        let s = dense(normal.pattern(), normal.values());
+        let rows = j.len();
+        for a in 0..rows {
+            for b in 0..rows {
+                let want: f64 = (0..dofs_n)
+                    .flat_map(|p| (0..dofs_n).map(move |q| (p, q)))
+                    .map(|(p, q)| j[a][p] * w[p][q] * j[b][q])
+                    .sum();
+                assert!(
+                    (s[a][b] - want).abs() <= 1e-13,
+                    "({a}, {b}): {} {want}",
+                    s[a][b]
+                );
+            }
+        }
+        let c_rhs: Vec<f64> = (0..rows).map(|r| 0.01 * (r as f64 - 1.5)).collect();
+        let mut mu = vec![0.0; rows];
+        let solve = normal.solve(&mut mu, &c_rhs, 1e-14, 10, 1e-13, 1e-8);
+        assert!(!solve.failed && solve.residual <= 1e-13, "{solve:?}");
+        let mut delta = vec![0.0; dofs_n];
+        normal.back_substitute(&mut delta, &mu, &values);
+        let isotropic = delta.clone();
+        super::slide(&mut delta, dofs, n, c / w_inv);
+        for p in 0..dofs_n {
+            let jt_mu: f64 = (0..dofs_n)
+                .map(|q| w[p][q] * (0..rows).map(|r| j[r][q] * mu[r]).sum::<f64>())
+                .sum();
+            assert!((delta[p] + jt_mu).abs() <= 1e-13, "dof {p}");
+        }
+        for r in 0..rows {
+            let linear: f64 = (0..dofs_n).map(|d| j[r][d] * delta[d]).sum();
+            assert!((linear + c_rhs[r]).abs() <= 1e-12, "row {r}");
+        }
+        let along = |v: &[f64]| dofs.iter().zip(&n).map(|(&d, &k)| v[d] * k).sum::<f64>();
+        assert!(
+            along(&isotropic).abs() > 1e-4,
+            "the test must move the node"
+        );
+        assert!(along(&delta).abs() <= 1.001e-3 * along(&isotropic).abs());
     }
 
     /// $\delta = -W^{-1}J^\top\mu$ with $S\mu = C$ solves the projection's KKT system:

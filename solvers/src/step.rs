@@ -36,7 +36,7 @@ use crate::vector::max_abs;
 mod line_search;
 mod projection;
 
-pub use projection::Correction;
+pub use projection::{Correction, Pins};
 
 /// Node positions and velocities (page units, page units per second).
 #[derive(Clone, Debug, PartialEq)]
@@ -90,6 +90,9 @@ struct Workspace<T: Real> {
     /// The projection's normal equations $J W^{-1} J^\top$, analysed with the KKT for a
     /// solver that projects ([`Solver::analyse_projection`]), absent otherwise.
     normal: Option<NormalEquations<T>>,
+    /// Per node, a contact the projection let go of in this call: the node was held along
+    /// a normal and the constraints pulled it off its surface ([`projection::Pins`]).
+    released: Vec<bool>,
 }
 
 impl<T: Real> Workspace<T> {
@@ -127,6 +130,7 @@ impl<T: Real> Workspace<T> {
             trial: vec![T::Vec3::ZERO; nodes],
             factored: false,
             normal,
+            released: vec![false; nodes],
         }
     }
 }

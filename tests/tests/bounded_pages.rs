@@ -6,7 +6,8 @@
 //! its rest length (a frame whose correction cannot get there keeps its previous state and
 //! says `Stalled`); for the cone and (ignored, open) the spring page's render grid, edge
 //! stretch $\lvert\ell/\ell^0 - 1\rvert \le 10\,\%$ (the run's default health bound); for the
-//! tearing sheet, a valid manifold. The page models hold one page each, so "pages
+//! XPBD page, a finite state and no stalled frame (its stretch bound is open: ignored
+//! below); for the tearing sheet, a valid manifold. The page models hold one page each, so "pages
 //! conserved" has no content here. Settings a model refuses must be refused with a typed
 //! error.
 
@@ -14,6 +15,7 @@ use folio_geometry::QuadGrid;
 use folio_kernels::spring::SpringKind;
 use folio_pages::cone::{ConePage, ConeSettings};
 use folio_pages::spring::{Grip, Integrator, SpringPage, SpringSettings};
+use folio_pages::xpbd::{XpbdPage, XpbdSettings};
 use folio_pages::{PageError, PageModel, PageStatus, frame_metrics};
 use folio_tearing::sheet::{SheetEffects, SheetSettings, TearingSheet};
 use glam::DVec3;
@@ -299,6 +301,106 @@ proptest! {
         })?;
         prop_assert!(page.step().unwrap().status != PageStatus::Stalled);
     }
+}
+
+/// The largest deformation $\lvert\ell/L^0 - 1\rvert$ of the XPBD page's distance
+/// constraints (edges and diagonals).
+fn xpbd_links(page: &XpbdPage<f64>) -> f64 {
+    let x = page.positions();
+    page.distances()
+        .iter()
+        .map(|c| {
+            let [a, b] = c.nodes.map(|k| k as usize);
+            ((x[a] - x[b]).length() / c.rest - 1.0).abs()
+        })
+        .fold(0.0, folio_tests::worst)
+}
+
+proptest! {
+    #![proptest_config(config(12))]
+
+    /// The XPBD page with its settings drawn across the ranges a scene would use (time step
+    /// log-uniformly in $[10^{-3}, 0.05]$ s, 8 to 64 substeps, 4 to 16 quads per side, page
+    /// sizes $[1, 100]$, bending stiffness $\times[0.1, 10]$ of the book page's at its size,
+    /// gravity and the table on or off): finite on every frame and never stalled.
+    #[test]
+    fn the_xpbd_page_stays_finite(
+        flags in [any::<bool>(), any::<bool>()],
+        draws in [0.0..=1.0f64, 0.0..=1.0f64, 0.0..=1.0f64, 0.0..=1.0f64],
+        quads in [4usize..=16, 4usize..=16],
+        substeps in 8u32..=64,
+        g in gesture(),
+    ) {
+        xpbd_case(flags, draws, quads, substeps, &g, false)?;
+    }
+
+    /// As above, and every link and the render grid within the run's 10 % on every frame.
+    #[test]
+    #[ignore = "open: XPBD's one sweep per substep does not bound stretch under a flick. \
+                The gripped particles jump with the finger within a frame and the sweeps \
+                cannot follow: a page 1 unit wide on 4x4 quads flicked in one frame stretched a link \
+                by 33 % (the reach cut holds the finger within 1 % of the page's reach, not \
+                the speed); the cases drawn before it measured 0-8.7 %"]
+    fn the_xpbd_page_stays_within_the_bound(
+        flags in [any::<bool>(), any::<bool>()],
+        draws in [0.0..=1.0f64, 0.0..=1.0f64, 0.0..=1.0f64, 0.0..=1.0f64],
+        quads in [4usize..=16, 4usize..=16],
+        substeps in 8u32..=64,
+        g in gesture(),
+    ) {
+        xpbd_case(flags, draws, quads, substeps, &g, true)?;
+    }
+}
+
+/// One XPBD case (the property tests above): settings from the draws, the gesture played,
+/// finite and never stalled on every frame, and with `bounded` the links and the render
+/// grid within [`STRETCH_BOUND`].
+fn xpbd_case(
+    flags: [bool; 2],
+    draws: [f64; 4],
+    quads: [usize; 2],
+    substeps: u32,
+    g: &Gesture,
+    bounded: bool,
+) -> Result<(), TestCaseError> {
+    let [gravity, floor] = flags;
+    let [step, size, stiffness, aspect] = draws;
+    let d = XpbdSettings::<f64>::default();
+    let width = log_uniform(size, 1.0, 100.0);
+    let height = width * log_uniform(aspect, 0.5, 2.0);
+    // The book page's load number at every size: D scales with rho g W^3.
+    let scale = (width / d.width).powi(3) * (d.width * d.height) / (width * height);
+    let s = XpbdSettings {
+        quads_across: quads[0],
+        quads_along: quads[1],
+        width,
+        height,
+        areal_density: 1.0 / (width * height),
+        gravity: if gravity { d.gravity } else { 0.0 },
+        bending_stiffness: d.bending_stiffness * scale * log_uniform(stiffness, 0.1, 10.0),
+        time_step: log_uniform(step, 1e-3, 0.05),
+        substeps,
+        floor,
+        ..d
+    };
+    let mut page = XpbdPage::new(s).unwrap();
+    play(&mut page, g, |page, k, render, status| {
+        let links = xpbd_links(page);
+        prop_assert!(status != PageStatus::Stalled, "frame {k}");
+        if bounded {
+            prop_assert!(
+                links <= STRETCH_BOUND,
+                "frame {k}: links {links} ({status:?})"
+            );
+            prop_assert!(
+                render <= STRETCH_BOUND,
+                "frame {k}: render {render}, links {links}"
+            );
+        }
+        Ok(())
+    })?;
+    prop_assert!(page.positions().iter().all(|p| p.is_finite()));
+    Ok(())
 }
 
 proptest! {

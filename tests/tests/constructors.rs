@@ -41,6 +41,18 @@ fn bad_rest_lengths_name_the_edge() {
         dog_laplacian::inner([1e-200_f64, 1.0, 1.0, 1.0]).is_err(),
         "below the length floor"
     );
+    assert_eq!(
+        dog_laplacian::inner_area([1.0, 1.0, 1.0, 0.0], 1.0).unwrap_err(),
+        KernelError::NonPositiveRestLength { index: 3 }
+    );
+    assert_eq!(
+        dog_laplacian::boundary_area([1.0, 1.0], 0.0).unwrap_err(),
+        KernelError::OutOfRange { name: "area" }
+    );
+    assert_eq!(
+        dog_laplacian::inner_area([1.0; 4], f64::NAN).unwrap_err(),
+        KernelError::NonFiniteParameter { name: "area" }
+    );
 }
 
 #[test]

@@ -120,6 +120,29 @@ fn dog_laplacian_boundary() {
 }
 
 #[test]
+fn dog_laplacian_inner_area() {
+    potentials("DOG Laplacian inner area", 13, |r| {
+        let area = r.uniform(0.1, 3.0);
+        (
+            dog_laplacian::inner_area(lengths(r), area).unwrap(),
+            jittered_star(r, INNER_DIRS, 0.7),
+        )
+    });
+}
+
+#[test]
+fn dog_laplacian_boundary_area() {
+    potentials("DOG Laplacian boundary area", 14, |r| {
+        let dirs = [DVec3::ZERO, DVec3::X, DVec3::NEG_X];
+        let area = r.uniform(0.1, 3.0);
+        (
+            dog_laplacian::boundary_area(lengths(r), area).unwrap(),
+            jittered_star(r, dirs, 0.7),
+        )
+    });
+}
+
+#[test]
 fn curve_laplacian() {
     potentials("curve Laplacian", 5, |r| {
         let dirs = [DVec3::ZERO, DVec3::NEG_X, DVec3::X];

@@ -1,7 +1,8 @@
 //! A step on an analysed topology allocates nothing (DESIGN.md: "setup allocates; stepping
 //! does not"), held by a counting global allocator: the solver on its test models, and the
 //! book over the recorded page turn (collisions with their broad phase, and the constraint
-//! projection with its normal equations, included).
+//! projection with its normal equations, included), and the XPBD page over the shared drag
+//! (its steps and its sampling).
 
 use folio_book::{Book, BookSettings, Script};
 use folio_kernels::Real;
@@ -69,6 +70,35 @@ fn steps_after_setup_do_not_allocate() {
         assert!(contact_tests > 0, "the page met the blocks");
         assert_eq!(n, 0, "the book's page turn");
     }
+
+    for (n, moved) in [xpbd_page_turn::<f64>(), xpbd_page_turn::<f32>()] {
+        assert!(moved > 1.0, "the XPBD page moved");
+        assert_eq!(n, 0, "the XPBD page's turn");
+    }
+}
+
+/// Allocations inside the XPBD page's steps and samples over the shared drag (the grab,
+/// the drags and the release included), and how far its fore-edge corner moved.
+fn xpbd_page_turn<T: Real>() -> (usize, f64) {
+    use folio_kernels::Vec3Ops;
+    use folio_pages::xpbd::{XpbdPage, XpbdSettings};
+    use folio_pages::{PageModel, TouchScript};
+    let script = TouchScript::parse(include_str!("../fixtures/page_turn.touch")).unwrap();
+    let mut page = XpbdPage::<T>::new(XpbdSettings::default()).unwrap();
+    let grid = folio_geometry::QuadGrid::new(24, 34).unwrap();
+    let mut samples = vec![T::Vec3::ZERO; grid.len()];
+    let corner = page.grid().index(page.grid().nx - 1, 0);
+    let start = page.positions()[corner];
+    let mut in_steps = 0;
+    for frame in 0..script.frames {
+        let before = allocations();
+        script.at(frame).apply(&mut page).unwrap();
+        page.step().unwrap();
+        page.sample(grid, &mut samples).unwrap();
+        in_steps += allocations() - before;
+    }
+    let d = page.positions()[corner] - start;
+    (in_steps, d.dot(d).to_f64().sqrt())
 }
 
 /// Allocations inside the book's steps over the recorded page turn, and the point-wall

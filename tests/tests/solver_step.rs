@@ -2,7 +2,7 @@
 //! equilibrium, bad input, redundant constraints and settings validation.
 
 use folio_kernels::{Real, Vec3Ops};
-use folio_solvers::{Settings, Solver, SolverError, State, StepStatus};
+use folio_solvers::{Pins, Settings, Solver, SolverError, State, StepStatus};
 use folio_tests::models::{Chain, DogSheet, hanging_chain};
 
 const LINKS: usize = 10;
@@ -227,6 +227,17 @@ fn wrong_state_length_is_an_error() {
     ));
 }
 
+/// The chain at rest on its catenary.
+fn catenary_state() -> State<f64> {
+    let catenary = hanging_chain(LINKS, LENGTH, MASS, 2.0);
+    State::at_rest(
+        catenary
+            .iter()
+            .map(|p| glam::DVec3::new(p[0], p[1], 0.0))
+            .collect(),
+    )
+}
+
 /// Largest link-length error of the chain.
 fn link_error(x: &[glam::DVec3]) -> f64 {
     x.windows(2)
@@ -239,17 +250,11 @@ fn projection_restores_the_constraints_and_keeps_pinned_nodes() {
     let chain = Chain::<f64>::new(LINKS, LENGTH, MASS);
     let mut solver = Solver::new(Settings::default()).unwrap();
     // The catenary (curved, so a small push of one node stays feasible).
-    let catenary = hanging_chain(LINKS, LENGTH, MASS, 2.0);
-    let mut state = State::at_rest(
-        catenary
-            .iter()
-            .map(|p| glam::DVec3::new(p[0], p[1], 0.0))
-            .collect(),
-    );
+    let mut state = catenary_state();
     let pinned: Vec<bool> = (0..=LINKS).map(|k| k == 4).collect();
     // Nothing to project with before the first step.
     let none = solver
-        .project_constraints(&chain, &mut state, &pinned, 1e4, 1e-12, 5)
+        .project_constraints(&chain, &mut state, Pins::isotropic(&pinned, 1e4), 1e-12, 5)
         .unwrap();
     assert_eq!(none.steps, 0);
     solver.step(&chain, &mut state).unwrap();
@@ -262,10 +267,10 @@ fn projection_restores_the_constraints_and_keeps_pinned_nodes() {
     let mut free = state.clone();
     solver
         .clone()
-        .project_constraints(&chain, &mut free, &pinned, 1.0, 1e-11, 8)
+        .project_constraints(&chain, &mut free, Pins::isotropic(&pinned, 1.0), 1e-11, 8)
         .unwrap();
     let c = solver
-        .project_constraints(&chain, &mut state, &pinned, 1e4, 1e-11, 8)
+        .project_constraints(&chain, &mut state, Pins::isotropic(&pinned, 1e4), 1e-11, 8)
         .unwrap();
     let after = link_error(&state.x);
     println!("projection: {c:?}, link error {before:.2e} -> {after:.2e}");
@@ -287,7 +292,95 @@ fn projection_restores_the_constraints_and_keeps_pinned_nodes() {
     assert!(((state.v[4] - v_before[4]) * h - (state.x[4] - pushed_to)).length() < 1e-12);
     // A flag per node is required.
     assert!(matches!(
-        solver.project_constraints(&chain, &mut state, &pinned[1..], 1e4, 1e-12, 5),
+        solver.project_constraints(
+            &chain,
+            &mut state,
+            Pins::isotropic(&pinned[1..], 1e4),
+            1e-12,
+            5
+        ),
         Err(SolverError::StateLength { .. })
     ));
+}
+
+/// The projection of a chain whose node 4 a collision pushed by `push` after one step,
+/// with node 4 held by `pins` (built from the flags and normals given).
+fn pushed_chain_projection(
+    push: glam::DVec3,
+    normal: Option<glam::DVec3>,
+    weight: f64,
+) -> (glam::DVec3, glam::DVec3, f64) {
+    let chain = Chain::<f64>::new(LINKS, LENGTH, MASS);
+    let mut solver = Solver::new(Settings::default()).unwrap();
+    let mut state = catenary_state();
+    solver.step(&chain, &mut state).unwrap();
+    state.x[4] += push;
+    let pushed_to = state.x[4];
+    let pinned: Vec<bool> = (0..=LINKS).map(|k| k == 4).collect();
+    let normals: Vec<glam::DVec3> = (0..=LINKS)
+        .map(|k| {
+            if k == 4 {
+                normal.unwrap_or(glam::DVec3::ZERO)
+            } else {
+                glam::DVec3::ZERO
+            }
+        })
+        .collect();
+    let pins = Pins {
+        nodes: &pinned,
+        normals: if normal.is_some() { &normals } else { &[] },
+        weight,
+    };
+    solver
+        .project_constraints(&chain, &mut state, pins, 1e-11, 8)
+        .unwrap();
+    (pushed_to, state.x[4], link_error(&state.x))
+}
+
+/// A contact held along its normal (a pushed node on a floor): the node does not sink
+/// (free, the links pull it 5.5e-3 down; held, it sinks by less than 1e-2 of that, and
+/// may rise off the floor: the contact is one-sided) but slides along the floor,
+/// where a node held in every direction barely moves; and the contact is one-sided: a
+/// node the constraints pull off its surface (the same push with the surface above it) is
+/// let go and lands where it would free.
+#[test]
+fn a_node_held_along_its_normal_slides_and_is_let_go_when_pulled_off() {
+    let push = glam::DVec3::new(0.0, 0.015, 0.0);
+    let up = glam::DVec3::Y;
+    let (at, free, free_error) = pushed_chain_projection(push, None, 1.0);
+    let (_, iso, _) = pushed_chain_projection(push, None, 1e3);
+    let (_, held, held_error) = pushed_chain_projection(push, Some(up), 1e3);
+    let (_, off, _) = pushed_chain_projection(push, Some(-up), 1e3);
+    println!(
+        "free {:?} iso {:?} held {:?} off {:?}",
+        free - at,
+        iso - at,
+        held - at,
+        off - at
+    );
+    assert!(
+        free_error <= 1e-11 && held_error <= 1e-11,
+        "{free_error:.2e} {held_error:.2e}"
+    );
+    // The links pull node 4 back down: a floor holds it.
+    assert!(
+        (free - at).y < -1e-3,
+        "the push must be undone when free: {:?}",
+        free - at
+    );
+    assert!(
+        (held - at).y >= -1e-2 * (free - at).y.abs(),
+        "{:?}",
+        held - at
+    );
+    // It slides along the floor, far more than a node held in every direction moves.
+    let slide = |p: glam::DVec3| (p - at).x.abs();
+    assert!(
+        slide(held) > 10.0 * slide(iso),
+        "held {:.2e} iso {:.2e}",
+        slide(held),
+        slide(iso)
+    );
+    // A surface above it does not hold it down: let go, it moves as if free.
+    assert!((off - free).length() <= 1e-6, "{:?} {:?}", off, free);
 }

@@ -1,7 +1,10 @@
 //! The mechanical energy of the particle system (seed `003_…` Sec. 2.1):
 //! $$E = \underbrace{\tfrac12 m\sum_k \lVert v_k\rVert^2}\_{\text{kinetic}} +
 //!   \underbrace{\sum_s \tfrac12 k_s(\lVert x_a - x_b\rVert - L^0_s)^2}\_{\text{springs}} +
-//!   \underbrace{w\sum_k y_k}\_{\text{gravity}},$$
+//!   V_{\mathrm{bend}} + \underbrace{\sum_k w_k y_k}\_{\text{gravity}},$$
+//! with the particle masses $m_k$ and weights $w_k$ of [`SpringNetwork::mass_of`] and
+//! [`SpringNetwork::weight_of`] and the plate bending $V_{\mathrm{bend}}$ of
+//! [`super::bending`] (0 when $D = 0$; counted in `spring`),
 //! gravity measured from the plane $y = 0$ of the flat page. With damping $c < 0$ and no
 //! input the exact dynamics lose energy at the rate $\dot E = c\sum_k\lVert v_k\rVert^2$.
 //! Units: mass·length²/s².
@@ -13,11 +16,11 @@ use super::network::SpringNetwork;
 /// The three parts of $E$ (module docs).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SpringEnergy<T> {
-    /// $\tfrac12 m \sum_k \lVert v_k\rVert^2$.
+    /// $\tfrac12 \sum_k m_k \lVert v_k\rVert^2$.
     pub kinetic: T,
-    /// $\sum_s \tfrac12 k_s(\ell_s - L^0_s)^2$.
+    /// $\sum_s \tfrac12 k_s(\ell_s - L^0_s)^2 + V_{\mathrm{bend}}$.
     pub spring: T,
-    /// $w \sum_k y_k$.
+    /// $\sum_k w_k y_k$.
     pub gravity: T,
 }
 
@@ -26,17 +29,17 @@ impl<T: Real> SpringEnergy<T> {
     #[must_use]
     pub fn of(network: &SpringNetwork<T>, x: &[T::Vec3], v: &[T::Vec3]) -> Self {
         let mut kinetic = T::ZERO;
-        let mut height = T::ZERO;
-        for vk in v {
-            kinetic += vk.dot(*vk);
+        let mut gravity = T::ZERO;
+        for (k, vk) in v.iter().enumerate() {
+            kinetic += network.mass_of(k) * vk.dot(*vk);
         }
-        for xk in x {
-            height += xk.y();
+        for (k, xk) in x.iter().enumerate() {
+            gravity += network.weight_of(k) * xk.y();
         }
         Self {
-            kinetic: T::HALF * network.particle_mass() * kinetic,
-            spring: network.spring_energy(x),
-            gravity: network.particle_weight() * height,
+            kinetic: T::HALF * kinetic,
+            spring: network.spring_energy(x) + network.plate_energy(x),
+            gravity,
         }
     }
 

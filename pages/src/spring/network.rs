@@ -10,7 +10,11 @@
 //!
 //! each with the rest length of its pair, $L^0 = \lVert \bar x_a - \bar x_b\rVert$, which on a
 //! square grid is [`SpringKind::rest_length`] of the spacing. Gravity $V = w\thinspace y$ per particle
-//! ([`Gravity`] with weight $w = m g$, the setting `particle_weight`).
+//! ([`Gravity`] with weight $w = m g$, the setting `particle_weight`, times the particle's
+//! area share with [`SpringSettings::area_masses`], [`super::bending::mass_share`]; so is
+//! its mass). With [`SpringSettings::bending_stiffness`] $D > 0$, the plate bending term of
+//! [`super::bending`]: [`SquaredStencil`]s of the second differences along the grid lines
+//! and of the cells' twists, family weight $D/2$.
 //!
 //! **Implicit damping.** The seed's particle damping $F = c\thinspace v$ is not a potential, but over an
 //! implicit-Euler step of $h$ (the substep, [`SpringSettings::substep`]) with
@@ -29,8 +33,10 @@ use folio_geometry::QuadGrid;
 use folio_kernels::gravity::Gravity;
 use folio_kernels::positional::Positional;
 use folio_kernels::spring::{Spring, SpringKind};
+use folio_kernels::stencil::SquaredStencil;
 use folio_kernels::{Real, Vec3Ops, math};
 
+use super::bending::{PlateStencil, SpineClamp, mass_share, plate_stencils, spine_clamps};
 use super::settings::SpringSettings;
 use folio_solvers::model::{Model, PotentialSet, TermVisitor};
 
@@ -52,8 +58,13 @@ pub struct SpringNetwork<T: Real> {
     rest: Vec<T::Vec3>,
     roles: Vec<Role>,
     mass: T,
+    /// Each particle's mass over `mass` ([`super::bending::mass_share`]).
+    shares: Vec<T>,
     springs: PotentialSet<T, Spring<T>, 2>,
     kinds: Vec<SpringKind>,
+    plate_second: PotentialSet<T, SquaredStencil<T, 3>, 3>,
+    plate_twist: PotentialSet<T, SquaredStencil<T, 4>, 4>,
+    plate_clamp: PotentialSet<T, SpineClamp<T>, 1>,
     gravity: PotentialSet<T, Gravity<T>, 1>,
     damping: PotentialSet<T, Positional<T>, 1>,
     version: u64,
@@ -131,12 +142,48 @@ impl<T: Real> SpringNetwork<T> {
                 }
             }
         }
+        // The one place where D becomes solver weights (module docs of `super::bending`):
+        // family weight D/2, stencil weights the differences' coefficients times the square
+        // root of their area weight.
+        let d = settings.bending_stiffness;
+        let mut plate_second = PotentialSet::new(d * T::HALF);
+        let mut plate_twist = PotentialSet::new(d * T::HALF);
+        if d > T::ZERO {
+            let spacing = settings.spacing().map(|h| h.to_f64());
+            plate_stencils(grid, spacing, |stencil| match stencil {
+                PlateStencil::Second {
+                    nodes,
+                    coefficients,
+                    area,
+                } => push_stencil(&mut plate_second, nodes, coefficients, area),
+                PlateStencil::Twist {
+                    nodes,
+                    coefficients,
+                    area,
+                } => push_stencil(&mut plate_twist, nodes, coefficients, area),
+            });
+        }
+        let mut plate_clamp = PotentialSet::new(d * T::HALF);
+        if d > T::ZERO {
+            spine_clamps(settings, |spine, k, w| {
+                plate_clamp.push(
+                    SpineClamp {
+                        spine: rest[spine],
+                        weight: T::from_f64(w),
+                    },
+                    [k as u32],
+                );
+            });
+        }
+        let shares: Vec<T> = (0..grid.len())
+            .map(|k| T::from_f64(mass_share(grid, k, settings.area_masses)))
+            .collect();
         let mut gravity = PotentialSet::new(T::ONE);
         let mut damping = PotentialSet::new(-settings.damping / (T::TWO * settings.substep()));
-        for (k, &p) in rest.iter().enumerate() {
+        for (k, (&p, &share)) in rest.iter().zip(&shares).enumerate() {
             gravity.push(
                 Gravity {
-                    weight: settings.particle_weight,
+                    weight: settings.particle_weight * share,
                 },
                 [k as u32],
             );
@@ -147,8 +194,12 @@ impl<T: Real> SpringNetwork<T> {
             rest,
             roles,
             mass: settings.particle_mass,
+            shares,
             springs,
             kinds,
+            plate_second,
+            plate_twist,
+            plate_clamp,
             gravity,
             damping,
             version: 0,
@@ -185,19 +236,121 @@ impl<T: Real> SpringNetwork<T> {
         &self.kinds
     }
 
-    /// Mass of every particle.
+    /// Mass of an inner particle, the setting `particle_mass` (of every particle without
+    /// [`SpringSettings::area_masses`]).
     #[must_use]
     pub fn particle_mass(&self) -> T {
         self.mass
     }
 
-    /// Gravity force on every particle ($m g$, along −Y).
+    /// Mass of particle `k` (0 out of range): `particle_mass` times its area share.
     #[must_use]
-    pub fn particle_weight(&self) -> T {
+    pub fn mass_of(&self, k: usize) -> T {
+        self.shares.get(k).map_or(T::ZERO, |&s| s * self.mass)
+    }
+
+    /// Gravity force on particle `k` ($m_k g$, along −Y; 0 out of range).
+    #[must_use]
+    pub fn weight_of(&self, k: usize) -> T {
         self.gravity
             .terms()
-            .first()
+            .get(k)
             .map_or(T::ZERO, |t| t.kernel.weight)
+    }
+
+    /// Gravity force on an inner particle ($m g$, along −Y): the setting `particle_weight`.
+    #[must_use]
+    pub fn particle_weight(&self) -> T {
+        let share = self.shares.first().copied().unwrap_or(T::ONE);
+        if share > T::ZERO {
+            self.weight_of(0) / share
+        } else {
+            T::ZERO
+        }
+    }
+
+    /// The plate bending term's second differences ([`super::bending`]); empty when
+    /// $D = 0$.
+    #[must_use]
+    pub fn plate_second(&self) -> &PotentialSet<T, SquaredStencil<T, 3>, 3> {
+        &self.plate_second
+    }
+
+    /// The plate bending term's cell twists ([`super::bending`]); empty when $D = 0$.
+    #[must_use]
+    pub fn plate_twist(&self) -> &PotentialSet<T, SquaredStencil<T, 4>, 4> {
+        &self.plate_twist
+    }
+
+    /// The clamp's terms ([`super::bending::SpineClamp`]); empty unless the spine is
+    /// clamped and $D > 0$.
+    #[must_use]
+    pub fn plate_clamp(&self) -> &PotentialSet<T, SpineClamp<T>, 1> {
+        &self.plate_clamp
+    }
+
+    /// The plate bending energy $V_{\mathrm{bend}}$ (with the clamp's terms) at `x`
+    /// ([`super::bending`]).
+    #[must_use]
+    pub fn plate_energy(&self, x: &[T::Vec3]) -> T {
+        fn family<T: Real, const N: usize>(
+            set: &PotentialSet<T, SquaredStencil<T, N>, N>,
+            x: &[T::Vec3],
+        ) -> T {
+            use folio_kernels::Potential;
+            let mut e = T::ZERO;
+            for t in set.terms() {
+                let mut p = [T::Vec3::ZERO; N];
+                for (pa, &n) in p.iter_mut().zip(&t.nodes) {
+                    *pa = x.get(n as usize).copied().unwrap_or(T::Vec3::ZERO);
+                }
+                e += t.kernel.value(&p);
+            }
+            e * set.weight
+        }
+        use folio_kernels::Potential;
+        let mut clamp = T::ZERO;
+        for t in self.plate_clamp.terms() {
+            if let Some(&p) = x.get(t.nodes[0] as usize) {
+                clamp += t.kernel.value(&[p]);
+            }
+        }
+        family(&self.plate_second, x)
+            + family(&self.plate_twist, x)
+            + clamp * self.plate_clamp.weight
+    }
+
+    /// Adds the plate bending forces $-\nabla V_{\mathrm{bend}}$ at `x` to `forces` (one per
+    /// particle; no allocation).
+    pub fn add_plate_forces(&self, x: &[T::Vec3], forces: &mut [T::Vec3]) {
+        fn family<T: Real, const N: usize>(
+            set: &PotentialSet<T, SquaredStencil<T, N>, N>,
+            x: &[T::Vec3],
+            forces: &mut [T::Vec3],
+        ) {
+            use folio_kernels::Potential;
+            for t in set.terms() {
+                let mut p = [T::Vec3::ZERO; N];
+                for (pa, &n) in p.iter_mut().zip(&t.nodes) {
+                    *pa = x.get(n as usize).copied().unwrap_or(T::Vec3::ZERO);
+                }
+                let g = t.kernel.gradient(&p);
+                for (&n, ga) in t.nodes.iter().zip(g) {
+                    if let Some(f) = forces.get_mut(n as usize) {
+                        *f -= ga * set.weight;
+                    }
+                }
+            }
+        }
+        family(&self.plate_second, x, forces);
+        family(&self.plate_twist, x, forces);
+        use folio_kernels::Potential;
+        for t in self.plate_clamp.terms() {
+            let k = t.nodes[0] as usize;
+            if let (Some(&p), Some(f)) = (x.get(k), forces.get_mut(k)) {
+                *f -= t.kernel.gradient(&[p])[0] * self.plate_clamp.weight;
+            }
+        }
     }
 
     /// Sets the role of particle `k` (ignored out of range), bumping the topology version
@@ -246,15 +399,42 @@ impl<T: Real> Model<T> for SpringNetwork<T> {
         self.roles.get(node).is_none_or(|r| *r != Role::Free)
     }
 
-    fn mass(&self, _node: usize) -> T {
-        self.mass
+    fn mass(&self, node: usize) -> T {
+        self.mass_of(node)
     }
 
     fn visit_terms<V: TermVisitor<T>>(&self, visitor: &mut V) {
         visitor.potentials(&self.springs);
+        if !self.plate_second.terms().is_empty() {
+            visitor.potentials(&self.plate_second);
+        }
+        if !self.plate_twist.terms().is_empty() {
+            visitor.potentials(&self.plate_twist);
+        }
+        if !self.plate_clamp.terms().is_empty() {
+            visitor.potentials(&self.plate_clamp);
+        }
         visitor.potentials(&self.gravity);
         visitor.potentials(&self.damping);
     }
+}
+
+/// Adds the plate stencil $a\lVert\sum_k c_k x_k\rVert^2$ on `nodes` to `set` as a
+/// [`SquaredStencil`] of weights $c_k\sqrt a$ (setup helper; module docs of
+/// [`super::bending`]).
+fn push_stencil<T: Real, const N: usize>(
+    set: &mut PotentialSet<T, SquaredStencil<T, N>, N>,
+    nodes: [usize; N],
+    coefficients: [f64; N],
+    area: f64,
+) {
+    let root = math::sqrt::<f64>(area);
+    set.push(
+        SquaredStencil {
+            weights: coefficients.map(|c| T::from_f64(c * root)),
+        },
+        nodes.map(|n| n as u32),
+    );
 }
 
 /// Zero vectors for `n` particles (setup helper).

@@ -93,6 +93,20 @@ pub struct SpringSettings<T: Real> {
     pub shear_stiffness: T,
     /// Stiffness $k$ of the bend springs (two apart along a grid line), finite, $\ge 0$.
     pub bend_stiffness: T,
+    /// Plate bending stiffness $D$ of the page (energy: mass·length²/s², N·m in SI), finite,
+    /// $\ge 0$: the plate term $V_{\mathrm{bend}}$ of [`super::bending`] (second
+    /// differences and cell twists on the rest grid), which tends to
+    /// $\frac D2\int\kappa_1^2 + \kappa_2^2\,dA$ at every grid. Default 0
+    /// (no term: the seed's page bends by its bend springs alone, which have no linear
+    /// bending stiffness, see [`super::bending`]). Not the bend springs' `bend_stiffness`.
+    pub bending_stiffness: T,
+    /// Particle masses by area ([`super::bending::mass_share`]): an inner particle weighs
+    /// `particle_mass`, an edge particle half of it and a corner a quarter, and likewise
+    /// `particle_weight`, so that a page of areal density $\rho$ is $\rho$ everywhere
+    /// (`particle_mass` $= \rho h_x h_z$). Off (the default, the seed's): every particle
+    /// weighs `particle_mass`. The particle damping $c\thinspace v$ stays one coefficient for
+    /// every particle.
+    pub area_masses: bool,
     /// Particle damping coefficient $c$ of $F = c\thinspace v$ (seed Sec. 3.1: $c = -0.7125$), finite,
     /// $\le 0$ (a positive coefficient would feed energy in).
     pub damping: T,
@@ -121,6 +135,10 @@ pub struct SpringSettings<T: Real> {
     /// The particle column at $u = 0$ is fixed at rest (the seed's fixed edge, Sec. 3.1
     /// step 2).
     pub fixed_spine: bool,
+    /// With `fixed_spine` and a plate term ($D > 0$): the spine is a clamp, holding the
+    /// page's tangent there along $\pm X$ by a ghost particle mirrored across the spine
+    /// ([`super::bending::SpineClamp`]). Off (the default): a hinge.
+    pub clamped_spine: bool,
     /// How the free particles are advanced.
     pub integrator: Integrator,
     /// Synchronize along the dog-ear line after each substep (seed Sec. 2.2.1,
@@ -188,6 +206,8 @@ impl<T: Real> Default for SpringSettings<T> {
             stretch_stiffness: T::from_f64(115_200.0 * mass),
             shear_stiffness: T::from_f64(28_800.0 * mass),
             bend_stiffness: T::from_f64(28_800.0 * mass),
+            bending_stiffness: T::ZERO,
+            area_masses: false,
             damping: T::from_f64(-0.7125 * mass),
             particle_weight: T::from_f64(9.81 * mass),
             time_step: T::from_f64(1.0 / 60.0),
@@ -196,6 +216,7 @@ impl<T: Real> Default for SpringSettings<T> {
             key_frame_capacity: 100,
             grip: Grip::Edge,
             fixed_spine: true,
+            clamped_spine: false,
             integrator: Integrator::SemiImplicitEuler,
             sync: true,
             floor: true,
@@ -203,6 +224,29 @@ impl<T: Real> Default for SpringSettings<T> {
             strain_limit: Some(T::from_f64(0.08)),
         }
     }
+}
+
+/// A page by its physical properties (issue 21), for [`SpringSettings::physical`]; any
+/// consistent units (SI: m, kg/m², N·m, m/s²).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PhysicalPage<T> {
+    /// Width $W$ across the page (from the spine), length.
+    pub width: T,
+    /// Height $H$ along the spine, length.
+    pub height: T,
+    /// Areal density $\rho$, mass per area.
+    pub areal_density: T,
+    /// Bending stiffness $D$, energy (N·m): the moment per unit width per unit curvature.
+    pub bending_stiffness: T,
+    /// Gravity $g$, length/s², along −Y.
+    pub gravity: T,
+    /// Membrane stiffness $Y$, force per length (N/m): the in-plane force per unit width
+    /// per unit strain. Numerics more than paper: paper's $Et$ (about $10^5$–$10^6$ N/m) is
+    /// far beyond what an explicit step can follow, so take it as stiff as the integrator
+    /// allows; the page stretches by about $\rho g L/Y$ under its own weight. Unlike the
+    /// default page's springs ($k/m$ fixed), $Y$ keeps the page's stretch the same at every
+    /// grid.
+    pub membrane_stiffness: T,
 }
 
 impl<T: Real> SpringSettings<T> {
@@ -224,6 +268,8 @@ impl<T: Real> SpringSettings<T> {
             stretch_stiffness: T::ONE,
             shear_stiffness: T::ONE,
             bend_stiffness: T::ONE,
+            bending_stiffness: T::ZERO,
+            area_masses: false,
             damping: T::from_f64(-0.7125),
             particle_weight: T::from_f64(0.00981),
             time_step: T::from_f64(1.0 / 60.0),
@@ -232,11 +278,56 @@ impl<T: Real> SpringSettings<T> {
             key_frame_capacity: 100,
             grip: Grip::Edge,
             fixed_spine: true,
+            clamped_spine: false,
             integrator: Integrator::SemiImplicitEuler,
             sync: true,
             floor: false,
             interpolation_degree: 5,
             strain_limit: Some(T::from_f64(0.08)),
+        }
+    }
+
+    /// A page described physically (issue 21, [`super::bending`]) on `particles`
+    /// $= [n_x, n_z]$ particles: the size, areal density $\rho$, bending stiffness $D$ and
+    /// gravity $g$ of `page` in one consistent set of units (SI: m, kg/m², N·m, m/s²). This is
+    /// where the physical description becomes the solver-facing settings:
+    /// - masses by area ([`SpringSettings::area_masses`]): `particle_mass` $= \rho h_x h_z$
+    ///   and `particle_weight` $= \rho h_x h_z\thinspace g$ (an inner particle's);
+    /// - `bending_stiffness` $= D$, the plate term of [`super::bending`];
+    /// - no bend springs (`bend_stiffness` 0): they have no linear bending stiffness and would
+    ///   stiffen the page as it bends ([`super::bending::bend_spring_equivalent`]);
+    /// - stretch springs of stiffness $Y$, the page's membrane stiffness
+    ///   ([`PhysicalPage::membrane_stiffness`]; a spring of a square cell carries a strip as
+    ///   wide as it is long, so $k = Y$ whatever the spacing), shear springs $Y/4$ (the
+    ///   default's ratio);
+    /// - the damping at the default's rate, $c/m = -0.7125\ \mathrm{s}^{-1}$.
+    ///
+    /// The rest are the defaults ([`SpringSettings::default`]: the spine fixed as a hinge;
+    /// [`SpringSettings::clamped_spine`] makes it a clamp); the caller picks the
+    /// integrator and substeps (the explicit one must pass [`SpringSettings::validate`]; a
+    /// stiff page needs more substeps, [`super::bending::omega_squared_bound`]).
+    #[must_use]
+    pub fn physical(page: &PhysicalPage<T>, particles: [usize; 2]) -> Self {
+        let [nx, nz] = particles;
+        let s = Self {
+            particles_across: nx,
+            particles_along: nz,
+            width: page.width,
+            height: page.height,
+            ..Self::default()
+        };
+        let [hx, hz] = s.spacing();
+        let m = page.areal_density * hx * hz;
+        Self {
+            particle_mass: m,
+            particle_weight: m * page.gravity,
+            stretch_stiffness: page.membrane_stiffness,
+            shear_stiffness: page.membrane_stiffness * T::from_f64(0.25),
+            bend_stiffness: T::ZERO,
+            bending_stiffness: page.bending_stiffness,
+            area_masses: true,
+            damping: m * T::from_f64(-0.7125),
+            ..s
         }
     }
 
@@ -305,6 +396,9 @@ impl<T: Real> SpringSettings<T> {
         if !non_negative(self.bend_stiffness) {
             return bad("bend_stiffness (must be finite and >= 0)");
         }
+        if !non_negative(self.bending_stiffness) {
+            return bad("bending_stiffness (must be finite and >= 0)");
+        }
         if !(self.damping.is_finite() && self.damping <= T::ZERO) {
             return bad("damping (must be finite and <= 0: the force is c v)");
         }
@@ -345,8 +439,10 @@ impl<T: Real> SpringSettings<T> {
     /// The explicit integrator's stability limits ([`Integrator::SemiImplicitEuler`]), with
     /// $h$ the substep: the springs $h\thinspace\omega_{max} \le 2$ with
     /// $\omega_{max}^2 = 4\sum k/m$ over the three families (an upper estimate: the default
-    /// page measures $\omega_{max}^2 = 3.3\sum k/m$), and the particle damping
-    /// $h\lvert c\rvert/m \le 1$ (beyond it $v \mathrel{+}= h c v/m$ reverses the velocity
+    /// page measures $\omega_{max}^2 = 3.3\sum k/m$), with the plate term and the lighter
+    /// edge particles of [`SpringSettings::area_masses`] added as in
+    /// [`super::bending::omega_squared_bound`], and the particle damping
+    /// $h\lvert c\rvert/m \le 1$ ($m/4$, a corner's, with area masses) (beyond it $v \mathrel{+}= h c v/m$ reverses the velocity
     /// instead of slowing it). Settings past either limit were accepted before and made
     /// every step blow up (and stall); they are refused here.
     ///
@@ -354,18 +450,19 @@ impl<T: Real> SpringSettings<T> {
     /// [`PageError::InvalidInput`] naming the limit crossed.
     fn check_explicit(&self) -> Result<(), PageError> {
         let h = self.substep().to_f64();
+        let lightest = if self.area_masses { 0.25 } else { 1.0 };
         let m = self.particle_mass.to_f64();
-        let k = self.stretch_stiffness.to_f64()
-            + self.shear_stiffness.to_f64()
-            + self.bend_stiffness.to_f64();
-        let spring_rate = h * folio_kernels::math::sqrt::<f64>(4.0 * k / m);
+        let omega2 = super::bending::omega_squared_bound(self);
+        let spring_rate = h * folio_kernels::math::sqrt::<f64>(omega2);
         if spring_rate.is_nan() || spring_rate > 2.0 {
             return Err(PageError::InvalidInput {
                 what: "stiffness, particle_mass or time_step (the explicit integrator needs \
-                       (time_step / substeps) * sqrt(4 (k_stretch + k_shear + k_bend) / m) <= 2)",
+                       (time_step / substeps) * sqrt(4 (k_stretch + k_shear + k_bend) / m) <= 2, \
+                       with the plate bending and area masses as in \
+                       spring::bending::omega_squared_bound)",
             });
         }
-        let damping_rate = h * -self.damping.to_f64() / m;
+        let damping_rate = h * -self.damping.to_f64() / (m * lightest);
         if damping_rate.is_nan() || damping_rate > 1.0 {
             return Err(PageError::InvalidInput {
                 what: "damping, particle_mass or time_step (the explicit integrator needs \
