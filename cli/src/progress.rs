@@ -13,8 +13,12 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-/// Nothing shows before the run has lasted this long.
+/// Nothing shows before the run has lasted this long, unless the environment variable
+/// `FOLIO_PROGRESS_AFTER` gives other seconds ([`quiet`]).
 const QUIET: Duration = Duration::from_secs(1);
+
+/// Seconds between two progress lines off a terminal.
+const LINE: Duration = Duration::from_secs(1);
 
 /// How often the watcher wakes.
 const TICK: Duration = Duration::from_millis(100);
@@ -42,13 +46,14 @@ impl Progress {
         let seen = Arc::clone(&count);
         let name = name.to_string();
         let terminal = std::io::stdout().is_terminal();
+        let quiet = quiet();
         let watcher = std::thread::spawn(move || {
             let started = Instant::now();
             let mut bar: Option<ProgressBar> = None;
-            let mut lines = 0u64;
+            let mut next_line = quiet;
             while let Err(RecvTimeoutError::Timeout) = stopped.recv_timeout(TICK) {
                 let elapsed = started.elapsed();
-                if elapsed < QUIET {
+                if elapsed < quiet {
                     continue;
                 }
                 let frame = seen.frame.load(Ordering::Relaxed);
@@ -57,8 +62,8 @@ impl Progress {
                     let bar = bar.get_or_insert_with(|| new_bar(&name));
                     bar.set_length(u64::from(frames));
                     bar.set_position(u64::from(frame));
-                } else if elapsed.as_secs() > lines {
-                    lines = elapsed.as_secs();
+                } else if elapsed >= next_line {
+                    next_line = elapsed + LINE;
                     let percent = 100.0 * f64::from(frame) / f64::from(frames.max(1));
                     eprintln!(
                         "{name}: frame {frame}/{frames} ({percent:.0} %), {:.0} s",
@@ -90,6 +95,16 @@ impl Progress {
             let _ = w.join();
         }
     }
+}
+
+/// How long a run stays quiet: `FOLIO_PROGRESS_AFTER` seconds (a non-negative number; the
+/// tests set 0 to see the progress of a short run on any machine), else [`QUIET`].
+fn quiet() -> Duration {
+    std::env::var("FOLIO_PROGRESS_AFTER")
+        .ok()
+        .and_then(|v| v.trim().parse::<f64>().ok())
+        .and_then(|s| Duration::try_from_secs_f64(s).ok())
+        .unwrap_or(QUIET)
 }
 
 /// The bar of scene `name`, drawn on stderr.
