@@ -244,6 +244,40 @@ impl Shape<'_> {
         }
     }
 
+    /// The page's surface at the material points of `grid` (page models: the page frame of
+    /// [`folio_pages`]; the book: the active page in the book's frame), written into `out`;
+    /// `false` when there is no page to sample (a book with no active page, a sheet).
+    #[must_use]
+    pub fn page_points(&self, grid: QuadGrid, out: &mut Vec<[f64; 3]>) -> bool {
+        out.clear();
+        let point = |p: <f64 as folio_kernels::Real>::Vec3| [p.x, p.y, p.z];
+        match self {
+            Self::Book(book) => {
+                let (Some(nodes), s) = (book.page(), book.settings()) else {
+                    return false;
+                };
+                let Some(page_grid) = QuadGrid::new(s.quads_across, s.quads_along) else {
+                    return false;
+                };
+                let (size, spacing) = (book.page_size(), book.grid_spacing());
+                out.extend((0..grid.len()).map(|k| {
+                    let at = folio_pages::material_point(grid, size, k);
+                    point(page_grid.bilinear::<f64>(nodes, spacing, at))
+                }));
+                true
+            }
+            Self::Page(page) => {
+                let mut samples = vec![glam_zero(); grid.len()];
+                if page.sample(grid, &mut samples).is_err() {
+                    return false;
+                }
+                out.extend(samples.into_iter().map(point));
+                true
+            }
+            Self::Sheet(_) => false,
+        }
+    }
+
     /// Appends the frame's render mesh to `out`.
     ///
     /// # Errors

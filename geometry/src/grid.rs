@@ -5,6 +5,7 @@
 //! (two, none); the grid edges carry the isometry terms (eq. 13).
 
 use alloc::vec::Vec;
+use folio_kernels::Real;
 
 /// A vertex's star with its neighbours in the order the DOG kernels expect.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -48,6 +49,25 @@ impl QuadGrid {
     #[must_use]
     pub fn is_empty(&self) -> bool {
         self.len() == 0
+    }
+
+    /// The surface of grid `nodes` (one point per vertex, index order) at the material
+    /// point `at` $= (u, v)$ of a grid whose rest spacing is `spacing` $= (h_u, h_v)$: the
+    /// bilinear interpolation of its cell,
+    /// $(1-b)\bigl((1-a)p_{ij} + a\,p_{i+1,j}\bigr) + b\bigl((1-a)p_{i,j+1} + a\,p_{i+1,j+1}\bigr)$
+    /// with $i = \lfloor u/h_u \rfloor$, $a = u/h_u - i$ (and $j$, $b$ along $v$). A point
+    /// beyond the last cell extrapolates it. `nodes` must hold [`QuadGrid::len`] points.
+    #[must_use]
+    pub fn bilinear<T: Real>(&self, nodes: &[T::Vec3], spacing: [f64; 2], at: [f64; 2]) -> T::Vec3 {
+        let fu = (at[0] / spacing[0]).max(0.0);
+        let fv = (at[1] / spacing[1]).max(0.0);
+        let i = (fu as usize).min(self.nx.saturating_sub(2));
+        let j = (fv as usize).min(self.nz.saturating_sub(2));
+        let (a, b) = (T::from_f64(fu - i as f64), T::from_f64(fv - j as f64));
+        let node = |i: usize, j: usize| nodes[self.index(i, j)];
+        let bottom = node(i, j) * (T::ONE - a) + node(i + 1, j) * a;
+        let top = node(i, j + 1) * (T::ONE - a) + node(i + 1, j + 1) * a;
+        bottom * (T::ONE - b) + top * b
     }
 
     /// Index of vertex `(i, j)`.

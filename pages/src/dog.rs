@@ -193,20 +193,12 @@ impl<T: Real> PageModel<T> for DogPage<T> {
 
     fn sample(&self, grid: QuadGrid, out: &mut [T::Vec3]) -> Result<(), PageError> {
         super::check_count(grid.len(), out.len())?;
-        let g = self.grid;
         let size = self.size();
         for (k, p) in out.iter_mut().enumerate() {
             let [u, v] = material_point(grid, size, k);
-            // Cell and local coordinates in the DOG grid.
-            let fu = u.to_f64() / self.spacing[0];
-            let fv = v.to_f64() / self.spacing[1];
-            let i = (fu as usize).min(g.nx - 2);
-            let j = (fv as usize).min(g.nz - 2);
-            let (a, b) = (T::from_f64(fu - i as f64), T::from_f64(fv - j as f64));
-            let at = |i: usize, j: usize| self.nodes[g.index(i, j)];
-            let bottom = at(i, j) * (T::ONE - a) + at(i + 1, j) * a;
-            let top = at(i, j + 1) * (T::ONE - a) + at(i + 1, j + 1) * a;
-            *p = bottom * (T::ONE - b) + top * b;
+            *p = self
+                .grid
+                .bilinear::<T>(&self.nodes, self.spacing, [u.to_f64(), v.to_f64()]);
         }
         Ok(())
     }
