@@ -5,6 +5,7 @@
 //! folio run SCENE_OR_NAME [--out DIR]   run a scene file or a built-in scene
 //! folio list                      the built-in scenes
 //! folio check SCENE...            check scene files without running them
+//! folio atlas SCENE_OR_NAME [--budget MS] [--out DIR]   what accuracy costs in time
 //! ```
 //!
 //! A run writes `report.json` into `--out` (default `out/<scene>/`; a scene's name is one
@@ -15,6 +16,7 @@
 
 extern crate alloc;
 
+mod atlas;
 mod exit;
 mod export;
 mod health;
@@ -36,7 +38,12 @@ use folio_scene::number::show;
 use folio_scene::scene::Scene;
 use run::Report;
 
-const USAGE: &str = "usage: folio [run SCENE_OR_NAME [--out DIR] | list | check SCENE...]";
+/// Counts each thread's allocations, so that a run can report the allocations of its steps
+/// ([`run::FrameRecord::allocations`]).
+#[global_allocator]
+static ALLOCATOR: folio_tests::counting::Counting = folio_tests::counting::Counting;
+
+const USAGE: &str = "usage: folio [run SCENE_OR_NAME [--out DIR] | list | check SCENE... | atlas SCENE_OR_NAME [--budget MS] [--out DIR]]";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -55,6 +62,13 @@ fn main() -> ExitCode {
             exit::GOOD
         }
         ["check", files @ ..] if !files.is_empty() => check(files),
+        ["atlas", target, options @ ..] => match atlas_options(options) {
+            Some((budget, out)) => atlas::command(target, budget, out),
+            None => {
+                eprintln!("{USAGE}");
+                exit::USAGE
+            }
+        },
         ["help" | "--help" | "-h"] => {
             println!("{USAGE}\n\n{}", exit::HELP);
             exit::GOOD
@@ -90,21 +104,51 @@ fn check(files: &[&str]) -> u8 {
     if failed { exit::BAD_SCENE } else { exit::GOOD }
 }
 
+/// The options of `folio atlas`: `--budget MS` (finite, > 0) and `--out DIR`, each at
+/// most once, in any order; `None` for anything else.
+fn atlas_options(options: &[&str]) -> Option<(Option<f64>, Option<PathBuf>)> {
+    let (mut budget, mut out) = (None, None);
+    for pair in options.chunks(2) {
+        match pair {
+            ["--budget", ms] if budget.is_none() => {
+                let ms: f64 = ms.parse().ok()?;
+                budget = Some(ms).filter(|v| v.is_finite() && *v > 0.0);
+                budget?;
+            }
+            ["--out", dir] if out.is_none() => out = Some(PathBuf::from(dir)),
+            _ => return None,
+        }
+    }
+    Some((budget, out))
+}
+
+/// The scene a command names: a built-in scene by name, else a scene file; checked, with
+/// its text.
+///
+/// # Errors
+/// The message: no such scene, or where the scene does not check.
+pub(crate) fn load_scene(target: &str) -> Result<(Scene, String), String> {
+    if let Some(text) = builtin::scene(target) {
+        return Scene::parse(text)
+            .map(|s| (s, text.to_string()))
+            .map_err(|e| format!("built-in scene {target}: {e}"));
+    }
+    if Path::new(target).is_file() {
+        let scene = read_scene(target)?;
+        let text = std::fs::read_to_string(target).map_err(|e| format!("{target}: {e}"))?;
+        return Ok((scene, text));
+    }
+    let names: Vec<&str> = builtin::SCENES.iter().map(|s| s.0).collect();
+    Err(format!(
+        "{target}: no such file or built-in scene (built-in: {})",
+        names.join(", ")
+    ))
+}
+
 /// Runs a scene file or a built-in scene by name.
 fn run_named(target: &str, out: Option<PathBuf>) -> u8 {
-    let scene = match builtin::scene(target) {
-        Some(text) => Scene::parse(text).map_err(|e| format!("built-in scene {target}: {e}")),
-        None if Path::new(target).is_file() => read_scene(target),
-        None => {
-            let names: Vec<&str> = builtin::SCENES.iter().map(|s| s.0).collect();
-            Err(format!(
-                "{target}: no such file or built-in scene (built-in: {})",
-                names.join(", ")
-            ))
-        }
-    };
-    let scene = match scene {
-        Ok(s) => s,
+    let scene = match load_scene(target) {
+        Ok((s, _)) => s,
         Err(e) => {
             eprintln!("{e}");
             return exit::BAD_SCENE;

@@ -49,7 +49,7 @@ fn nice_step(span: f64, target: f64) -> f64 {
 }
 
 /// A tick label: up to 3 decimals, trailing zeros removed.
-fn label(v: f64) -> String {
+pub(crate) fn label(v: f64) -> String {
     let s = format!("{v:.3}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s == "-0" {
@@ -59,8 +59,9 @@ fn label(v: f64) -> String {
     }
 }
 
-/// One panel's vertical axis: maps a value to its y coordinate, lists its ticks.
-struct Axis {
+/// One panel's vertical axis: maps a value to its y coordinate, lists its ticks. A
+/// horizontal axis is the same with `panel` = (right, left): `y` then gives the x.
+pub(crate) struct Axis {
     /// The panel's top and bottom (y).
     panel: (f64, f64),
     /// Value range shown (in axis units: log10 of the value on a log axis).
@@ -70,7 +71,7 @@ struct Axis {
 
 impl Axis {
     /// The y of `value`, or `None` if it cannot be drawn on this axis.
-    fn y(&self, value: f64) -> Option<f64> {
+    pub(crate) fn y(&self, value: f64) -> Option<f64> {
         let v = if self.log {
             if value.is_nan() || value <= 0.0 {
                 return None;
@@ -88,7 +89,7 @@ impl Axis {
     }
 
     /// Tick values (in data units) with their labels.
-    fn ticks(&self) -> Vec<(f64, String)> {
+    pub(crate) fn ticks(&self) -> Vec<(f64, String)> {
         let (lo, hi) = self.range;
         if self.log {
             let (a, b) = (lo.round() as i32, hi.round() as i32);
@@ -112,7 +113,7 @@ impl Axis {
 }
 
 /// The log axis over the positive finite `values`: whole decades around them (at least one).
-fn log_axis(panel: (f64, f64), values: &[f64]) -> Option<Axis> {
+pub(crate) fn log_axis(panel: (f64, f64), values: &[f64]) -> Option<Axis> {
     let logs = values
         .iter()
         .filter(|&&v| v > 0.0 && v.is_finite())

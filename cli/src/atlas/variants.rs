@@ -1,0 +1,322 @@
+//! The atlas's declared variants: what each knob is set to, and the scene file that sets it.
+//!
+//! A variant is the scene it is measured on with a few keys set: the page model (`model`)
+//! and the `[solver]` keys of `docs/scenes.md` (grid, precision, time step, Newton
+//! iterations and tolerance, the constraint Hessian, collision rounds, the projection,
+//! substeps). Everything else is the scene's own: its input, its book, its frames. A
+//! variant of another model than the scene's drops the scene's model-specific tables
+//! (`[book]`, `[weights]`, `[solver]`, `effects`): that model runs its defaults on the
+//! same input.
+
+use toml::{Table, Value};
+
+/// One point of the atlas: a label and the keys it sets.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Variant {
+    /// Short label (plots, tables): `"8x11"`, `"newton 2"`, `"f32"`.
+    pub label: String,
+    /// The page model (`"dog"`, `"cone"`, `"mass-spring"`, `"xpbd"`).
+    pub model: String,
+    /// The `[solver]` keys it sets, in order.
+    pub solver: Vec<(&'static str, Value)>,
+}
+
+/// The knob values a variant is built from (module docs; `None` keeps the scene's).
+#[derive(Clone, Copy, Debug, Default)]
+struct Knobs {
+    grid: Option<[i64; 2]>,
+    f32: bool,
+    /// Steps per 1/60 s frame.
+    steps: Option<i64>,
+    newton: Option<i64>,
+    tolerance: Option<f64>,
+    hessian: bool,
+    collision_rounds: Option<i64>,
+    no_projection: bool,
+    substeps: Option<i64>,
+}
+
+impl Knobs {
+    /// The `[solver]` keys of these knobs.
+    fn keys(self) -> Vec<(&'static str, Value)> {
+        let mut out = Vec::new();
+        if let Some([a, b]) = self.grid {
+            out.push(("grid", Value::Array(vec![a.into(), b.into()])));
+        }
+        if self.f32 {
+            out.push(("precision", "f32".into()));
+        }
+        if let Some(k) = self.steps {
+            out.push(("time_step", Value::Float(FRAME / k as f64)));
+        }
+        if let Some(n) = self.newton {
+            out.push(("newton_iterations", n.into()));
+        }
+        if let Some(t) = self.tolerance {
+            out.push(("newton_tolerance", t.into()));
+        }
+        if self.hessian {
+            out.push(("constraint_hessian", true.into()));
+        }
+        if let Some(r) = self.collision_rounds {
+            out.push(("collision_rounds", r.into()));
+        }
+        if self.no_projection {
+            out.push(("projection", false.into()));
+        }
+        if let Some(n) = self.substeps {
+            out.push(("substeps", n.into()));
+        }
+        out
+    }
+
+    /// The variant of `model` with these knobs, labelled by what they change.
+    fn variant(self, model: &str) -> Variant {
+        let mut parts = Vec::new();
+        if let Some([a, b]) = self.grid {
+            parts.push(format!("{a}x{b}"));
+        }
+        if self.f32 {
+            parts.push("f32".into());
+        }
+        if let Some(k) = self.steps {
+            parts.push(format!("h/{k}"));
+        }
+        if let Some(n) = self.newton {
+            parts.push(format!("newton {n}"));
+        }
+        if let Some(t) = self.tolerance {
+            parts.push(format!("tol {t:e}"));
+        }
+        if self.hessian {
+            parts.push("hessian".into());
+        }
+        if let Some(r) = self.collision_rounds {
+            parts.push(format!("{r} collision rounds"));
+        }
+        if self.no_projection {
+            parts.push("no projection".into());
+        }
+        if let Some(n) = self.substeps {
+            parts.push(format!("{n} substeps"));
+        }
+        let knobs = if parts.is_empty() {
+            "default".to_string()
+        } else {
+            parts.join(", ")
+        };
+        Variant {
+            label: format!("{model} {knobs}"),
+            model: model.to_string(),
+            solver: self.keys(),
+        }
+    }
+}
+
+/// The frame (seconds): a variant's time step is the frame over its steps per frame.
+const FRAME: f64 = 1.0 / 60.0;
+
+/// The grid of the reference, and of its refinement (quads across x along).
+pub const REFERENCE_GRIDS: [[i64; 2]; 2] = [[24, 33], [32, 44]];
+
+/// The reference's steps per frame, and its refinement's.
+pub const REFERENCE_STEPS: [i64; 2] = [2, 4];
+
+/// Newton's tolerance of the reference (KKT residual of seed `000_…` eq. 3).
+pub const REFERENCE_TOLERANCE: f64 = 1e-10;
+
+/// Newton's most iterations per step of the reference.
+pub const REFERENCE_NEWTON: i64 = 20;
+
+/// The reference of the atlas (`refined = false`), or the reference refined once more:
+/// the DOG book in `f64` on a fine grid, a short time step, Newton to a KKT residual of
+/// [`REFERENCE_TOLERANCE`] (at most [`REFERENCE_NEWTON`] iterations a step).
+#[must_use]
+pub fn reference(refined: bool) -> Variant {
+    let k = usize::from(refined);
+    let mut v = Knobs {
+        grid: Some(REFERENCE_GRIDS[k]),
+        steps: Some(REFERENCE_STEPS[k]),
+        newton: Some(REFERENCE_NEWTON),
+        tolerance: Some(REFERENCE_TOLERANCE),
+        ..Knobs::default()
+    }
+    .variant("dog");
+    v.label = if refined {
+        "reference, refined".into()
+    } else {
+        "reference".into()
+    };
+    v
+}
+
+/// The declared variants for a scene of `model` (`"dog"` for the book's scenes; a page
+/// model's scene, driven by touch input, also compares the other page models on the same
+/// input). The first is the scene as written.
+#[must_use]
+pub fn declared(model: &str) -> Vec<Variant> {
+    let none = Knobs::default();
+    let dog = |k: Knobs| k.variant("dog");
+    let mut out = Vec::new();
+    if model == "dog" {
+        out.push(dog(none));
+    } else {
+        out.push(none.variant(model));
+    }
+    out.extend([
+        dog(Knobs {
+            grid: Some([6, 8]),
+            ..none
+        }),
+        dog(Knobs {
+            grid: Some([12, 16]),
+            ..none
+        }),
+        dog(Knobs {
+            grid: Some([16, 22]),
+            ..none
+        }),
+        dog(Knobs {
+            newton: Some(2),
+            ..none
+        }),
+        dog(Knobs {
+            hessian: true,
+            ..none
+        }),
+        dog(Knobs {
+            newton: Some(2),
+            hessian: true,
+            ..none
+        }),
+        dog(Knobs { f32: true, ..none }),
+        dog(Knobs {
+            steps: Some(2),
+            ..none
+        }),
+        dog(Knobs {
+            collision_rounds: Some(1),
+            ..none
+        }),
+        dog(Knobs {
+            no_projection: true,
+            ..none
+        }),
+        dog(Knobs {
+            grid: Some([12, 16]),
+            newton: Some(2),
+            ..none
+        }),
+        dog(Knobs {
+            grid: Some([12, 16]),
+            steps: Some(2),
+            ..none
+        }),
+    ]);
+    if model != "dog" {
+        let others = [
+            none.variant("cone"),
+            none.variant("mass-spring"),
+            Knobs {
+                grid: Some([16, 22]),
+                ..none
+            }
+            .variant("mass-spring"),
+            none.variant("xpbd"),
+            Knobs {
+                substeps: Some(96),
+                ..none
+            }
+            .variant("xpbd"),
+            Knobs {
+                grid: Some([16, 22]),
+                substeps: Some(96),
+                ..none
+            }
+            .variant("xpbd"),
+        ];
+        // The scene's own model as written is the first variant already.
+        let first = out[0].clone();
+        out.extend(others.into_iter().filter(|v| *v != first));
+    }
+    out
+}
+
+/// The scene's model on the grid `grid` (quads across x along), all else as written.
+#[must_use]
+pub fn on_grid(model: &str, grid: [i64; 2]) -> Variant {
+    Knobs {
+        grid: Some(grid),
+        ..Knobs::default()
+    }
+    .variant(model)
+}
+
+/// The small atlas CI runs (a short scene): the scene as written, a coarser and a finer
+/// grid, 2 Newton iterations, the constraint Hessian and `f32`.
+#[must_use]
+pub fn small() -> Vec<Variant> {
+    let none = Knobs::default();
+    let dog = |k: Knobs| k.variant("dog");
+    vec![
+        dog(none),
+        dog(Knobs {
+            grid: Some([6, 8]),
+            ..none
+        }),
+        dog(Knobs {
+            grid: Some([12, 16]),
+            ..none
+        }),
+        dog(Knobs {
+            newton: Some(2),
+            ..none
+        }),
+        dog(Knobs {
+            hessian: true,
+            ..none
+        }),
+        dog(Knobs { f32: true, ..none }),
+    ]
+}
+
+/// The scene file of `variant` on the scene `base` (a parsed scene file): `name` becomes
+/// `name`, `model` the variant's, its `[solver]` keys are set; a variant of another model
+/// than the scene's drops `[book]`, `[weights]`, `[solver]` and `effects` first.
+#[must_use]
+pub fn scene_text(base: &Table, variant: &Variant, name: &str) -> String {
+    let mut table = base.clone();
+    let same_model = table.get("model").and_then(Value::as_str) == Some(variant.model.as_str());
+    if !same_model {
+        for key in ["book", "weights", "solver", "effects"] {
+            table.remove(key);
+        }
+    }
+    table.insert("name".into(), name.into());
+    table.insert("model".into(), variant.model.as_str().into());
+    if !variant.solver.is_empty() {
+        let solver = table
+            .entry("solver")
+            .or_insert_with(|| Value::Table(Table::new()));
+        if let Value::Table(solver) = solver {
+            for (key, value) in &variant.solver {
+                solver.insert((*key).into(), value.clone());
+            }
+        }
+    }
+    toml::to_string(&table).unwrap_or_default()
+}
+
+/// A file-name-safe form of `label` (`"dog 12x16, newton 2"` → `"dog-12x16-newton-2"`).
+#[must_use]
+pub fn slug(label: &str) -> String {
+    let mut out = String::new();
+    for c in label.chars() {
+        if c.is_ascii_alphanumeric() {
+            out.push(c.to_ascii_lowercase());
+        } else if !out.ends_with('-') {
+            out.push('-');
+        }
+    }
+    out.trim_matches('-').to_string()
+}
