@@ -3,7 +3,8 @@
 use core::ffi::{CStr, c_char};
 
 use folio_book::Book;
-use folio_scene::scene::{ModelKind, Scene};
+use folio_scene::scene::{ModelKind, Precision, Scene};
+use folio_scene::settings::book_settings;
 
 use crate::any_book::AnyBook;
 use crate::create::register;
@@ -21,8 +22,9 @@ fn invalid(message: impl Into<String>) -> Failure {
 /// Creates a book from the text of a scene file (TOML, the format of `docs/scenes.md`, as
 /// `folio check` reads it) and writes its handle to `*out`. The scene must name
 /// `model = "dog"`. Its `[book]`, `effects`, `[weights]` and `[solver]` define the book,
-/// simulated in double precision; its input, frames, outputs and expectations are checked
-/// but not used: the caller drives the book with grab, drag, release and step. The smallest
+/// simulated in the scene's `solver.precision` (double by default); its input, frames,
+/// outputs and expectations are checked but not used: the caller drives the book with
+/// grab, drag, release and step. The smallest
 /// scene is `name = "s"`, `model = "dog"`, `input = { fixture = "page-turn" }`.
 ///
 /// Returns `FOLIO_STATUS_NULL_POINTER` for a NULL argument, `FOLIO_STATUS_INVALID_SCENE`
@@ -55,15 +57,18 @@ pub unsafe extern "C" fn folio_book_create_from_scene(
                 "the scene's model is {model:?}; the C API simulates the DOG book (model = \"dog\")"
             )));
         }
-        let settings = folio_scene::settings::book_settings::<f64>(&scene);
-        let book = Book::new(settings).map_err(|e| {
+        let refused = |e| {
             let f = Failure::book(e);
             match f.status {
                 FolioStatus::InvalidArgument => invalid(f.message),
                 _ => f,
             }
-        })?;
+        };
+        let book = match scene.precision() {
+            Precision::F64 => AnyBook::F64(Book::new(book_settings(&scene)).map_err(refused)?),
+            Precision::F32 => AnyBook::F32(Book::new(book_settings(&scene)).map_err(refused)?),
+        };
         // SAFETY: `out` was checked non-NULL and aligned above; writable by contract.
-        unsafe { register(AnyBook::F64(book), out) }
+        unsafe { register(book, out) }
     })
 }

@@ -192,7 +192,7 @@ mod tests {
     use super::*;
 
     fn record(frame: u32, status: &str) -> FrameRecord {
-        FrameRecord::new(frame, 0.1, status.to_string(), false)
+        FrameRecord::new(frame, 1, 0.1, status.to_string(), false)
     }
 
     const BOUNDS: Bounds = Bounds {

@@ -25,6 +25,7 @@ mod outputs;
 mod progress;
 mod render;
 mod run;
+mod shape;
 mod sheet_run;
 mod sheet_view;
 mod timeline;
@@ -259,11 +260,11 @@ fn print_summary(report: &Report, out: &Path, seconds: f64) {
         .map(|(k, v)| format!("{k} {v}"))
         .collect();
     println!(
-        "scene {} (model {}), {} frames in {seconds:.2} s",
-        report.scene, report.model, s.frames
+        "scene {} (model {}, {}), {} frames ({} steps) in {seconds:.2} s",
+        report.scene, report.model, report.precision, s.frames, s.steps_total
     );
     println!(
-        "  step time        median {:.3} ms, p99 {:.3} ms",
+        "  frame compute    median {:.3} ms, p99 {:.3} ms (all of a frame's steps)",
         s.step_ms_median, s.step_ms_p99
     );
     let b = &s.health.bounds;

@@ -4,41 +4,41 @@
 use alloc::collections::BTreeMap;
 use std::time::Instant;
 
-use folio_book::BookParams;
 use folio_book::{
     Action, Book, BookError, BookStepReport, DragOutcome, GrabOutcome, InputOutcome, Script,
 };
 use folio_geometry::QuadGrid;
-use folio_geometry::mesh::TriMesh;
+use folio_kernels::{Real, Vec3Ops, real};
 use folio_pages::cone::{ConePage, ConeSettings};
 use folio_pages::dog::DogPage;
 use folio_pages::spring::SpringPage;
 use folio_pages::touch::Touch;
 use folio_pages::xpbd::XpbdPage;
-use folio_pages::{Gestures, PageModel, PageStatus, TouchScript, frame_metrics};
-use folio_tearing::sheet::TearingSheet;
+use folio_pages::{Gestures, PageError, PageModel, PageStatus, TouchScript, frame_metrics};
 
+use folio_scene::clock;
 use folio_scene::events;
 use folio_scene::settings::{book_settings, spring_settings, xpbd_settings};
 use serde::Serialize;
 
 use folio_scene::fixtures::{self, Kind};
-use folio_scene::scene::{ModelKind, Scene};
+use folio_scene::scene::{ModelKind, Precision, Scene};
 
 use folio_solvers::report::StepStatus;
 
 use crate::health::{self, Bounds, Health};
+pub use crate::shape::{PageView, RENDER_QUADS, Shape};
 use crate::sheet_run::TearingLog;
-
-/// The render grid page models are measured on (24 x 34 quads, half a page unit).
-const RENDER_QUADS: (usize, usize) = (24, 34);
 
 /// One frame of a run.
 #[derive(Clone, Debug, Serialize)]
 pub struct FrameRecord {
     /// Frame index.
     pub frame: u32,
-    /// Wall time of the step (milliseconds).
+    /// Model steps the frame took (a frame is 1/60 s of model time; [`folio_scene::clock`]):
+    /// as many as it was due, or up to the first that failed.
+    pub steps: u32,
+    /// Wall time of all the frame's steps (milliseconds): the frame's compute time.
     pub step_ms: f64,
     /// Max edge stretch of the page (when there is an active page).
     pub max_stretch: Option<f64>,
@@ -84,12 +84,13 @@ pub struct FrameRecord {
 }
 
 impl FrameRecord {
-    /// A frame with its time, status and finiteness, and no model-specific figure: each
+    /// A frame with its steps, time, status and finiteness, and no model-specific figure: each
     /// model fills in its own with struct update syntax.
     #[must_use]
-    pub fn new(frame: u32, step_ms: f64, status: String, nonfinite: bool) -> Self {
+    pub fn new(frame: u32, steps: u32, step_ms: f64, status: String, nonfinite: bool) -> Self {
         Self {
             frame,
+            steps,
             step_ms,
             max_stretch: None,
             rmse_stretch: None,
@@ -132,10 +133,12 @@ impl FrameRecord {
 pub struct Summary {
     /// Frames run.
     pub frames: u32,
-    /// Median step time (milliseconds).
+    /// Median compute time of a frame, all its steps (milliseconds).
     pub step_ms_median: f64,
-    /// 99th-percentile step time (milliseconds).
+    /// 99th-percentile compute time of a frame, all its steps (milliseconds).
     pub step_ms_p99: f64,
+    /// Model steps over the run (frames take [`clock::FRAME_SECONDS`] of model time each).
+    pub steps_total: u64,
     /// Mean over frames with a page of the max edge stretch (null without one).
     pub max_stretch_mean: Option<f64>,
     /// Mean over frames with a page of the RMSE edge stretch (null without one).
@@ -191,6 +194,8 @@ pub struct Report {
     pub scene: String,
     /// The page model.
     pub model: &'static str,
+    /// The precision the model ran in (`"f64"`, `"f32"`).
+    pub precision: &'static str,
     /// The summary.
     pub summary: Summary,
     /// Every frame.
@@ -221,85 +226,6 @@ fn frames(scene: &Scene, input: u32) -> u32 {
     scene.frames.as_ref().map_or(input, |f| *f.get_ref())
 }
 
-/// What a frame shows, for the outputs that draw it.
-#[derive(Clone, Copy)]
-pub enum Shape<'a> {
-    /// The whole book.
-    Book(&'a Book<f64>),
-    /// A page model's page.
-    Page(&'a dyn PageModel<f64>),
-    /// The tearing sheet.
-    Sheet(&'a TearingSheet<f64>),
-}
-
-impl Shape<'_> {
-    /// The active page's thickness (page units; 0 without one): a stack of $k$ pages is
-    /// $k$ pages thick.
-    #[must_use]
-    pub fn thickness(&self) -> f64 {
-        match self {
-            Self::Book(book) => book.active_thickness(),
-            Self::Page(_) => BookParams::default().page_thickness,
-            Self::Sheet(sheet) => sheet.settings().tearing.thickness,
-        }
-    }
-
-    /// The page's surface at the material points of `grid` (page models: the page frame of
-    /// [`folio_pages`]; the book: the active page in the book's frame), written into `out`;
-    /// `false` when there is no page to sample (a book with no active page, a sheet).
-    #[must_use]
-    pub fn page_points(&self, grid: QuadGrid, out: &mut Vec<[f64; 3]>) -> bool {
-        out.clear();
-        let point = |p: <f64 as folio_kernels::Real>::Vec3| [p.x, p.y, p.z];
-        match self {
-            Self::Book(book) => {
-                let (Some(nodes), s) = (book.page(), book.settings()) else {
-                    return false;
-                };
-                let Some(page_grid) = QuadGrid::new(s.quads_across, s.quads_along) else {
-                    return false;
-                };
-                let (size, spacing) = (book.page_size(), book.grid_spacing());
-                out.extend((0..grid.len()).map(|k| {
-                    let at = folio_pages::material_point(grid, size, k);
-                    point(page_grid.bilinear::<f64>(nodes, spacing, at))
-                }));
-                true
-            }
-            Self::Page(page) => {
-                let mut samples = vec![glam_zero(); grid.len()];
-                if page.sample(grid, &mut samples).is_err() {
-                    return false;
-                }
-                out.extend(samples.into_iter().map(point));
-                true
-            }
-            Self::Sheet(_) => false,
-        }
-    }
-
-    /// Appends the frame's render mesh to `out`.
-    ///
-    /// # Errors
-    /// A mesh the mesher refuses (a non-finite or degenerate surface).
-    pub fn mesh(&self, out: &mut TriMesh) -> Result<(), RunError> {
-        match self {
-            Self::Book(book) => book.mesh(out).map_err(fail),
-            Self::Page(page) => {
-                let grid = QuadGrid::new(RENDER_QUADS.0, RENDER_QUADS.1)
-                    .ok_or_else(|| fail("render grid"))?;
-                let thickness = BookParams::default().page_thickness;
-                folio_pages::mesh(*page, grid, thickness, out).map_err(fail)
-            }
-            Self::Sheet(sheet) => {
-                let s = sheet.settings();
-                crate::sheet_view::render_mesh(sheet.mesh(), [s.width, s.height], out);
-                Ok(())
-            }
-        }
-    }
-}
-
 /// The input of a scene as gestures, when it is not a book fixture: a touch fixture or the
 /// scene's timed events.
 fn touch_input(scene: &Scene) -> Result<Option<(Gestures, bool)>, RunError> {
@@ -327,162 +253,280 @@ fn touch_input(scene: &Scene) -> Result<Option<(Gestures, bool)>, RunError> {
 /// Runs `scene`, calling `progress(frame, frames)` and `observe(frame, frames, shape)`
 /// after every frame. Every frame is measured and held to the scene's bounds
 /// ([`crate::health`]); an input that does nothing or a step that fails is recorded in its
-/// frame, and the run goes on.
+/// frame, and the run goes on. A frame is [`clock::FRAME_SECONDS`] of model time: its inputs
+/// apply, then the model takes the frame's steps ([`folio_scene::clock`]). The model runs in
+/// the scene's precision (`solver.precision`).
 ///
 /// # Errors
 /// A model or input the scene describes but that refuses to start (settings the model
 /// rejects; the scene's check refuses them first).
 pub fn run(
     scene: &Scene,
-    mut progress: impl FnMut(u32, u32),
-    mut observe: impl FnMut(u32, u32, Shape<'_>),
+    progress: impl FnMut(u32, u32),
+    observe: impl FnMut(u32, u32, Shape<'_>),
 ) -> Result<Report, RunError> {
     let model = *scene.model.get_ref();
     if model == ModelKind::Sheet {
         return crate::sheet_run::run(scene, progress, observe);
     }
-    let mut records = Vec::new();
-    let mut final_pages = None;
-    if let Some((script, seed)) = touch_input(scene)? {
-        // The DOG page is kept by type: its book measures the page and counts the pages.
-        let mut dog = None;
-        let mut other: Option<Box<dyn PageModel<f64>>> = None;
-        match model {
-            ModelKind::Cone => {
-                let mut s = ConeSettings::default();
-                if seed {
-                    (s.width, s.height) = (25.0, 25.0);
-                }
-                other = Some(Box::new(ConePage::new(s).map_err(fail)?));
-            }
-            ModelKind::MassSpring => {
-                let s = spring_settings(scene, seed);
-                other = Some(Box::new(SpringPage::new(s).map_err(fail)?));
-            }
-            ModelKind::Xpbd => {
-                let s = xpbd_settings(scene, seed);
-                other = Some(Box::new(XpbdPage::new(s).map_err(fail)?));
-            }
-            ModelKind::Dog => dog = Some(DogPage::new(book_settings(scene)).map_err(fail)?),
-            ModelKind::Sheet => return Err(fail("a sheet is held by hands")),
-            other => return Err(fail(format!("no touch run for the {} model", other.name()))),
-        }
-        let grid = QuadGrid::new(RENDER_QUADS.0, RENDER_QUADS.1).ok_or_else(|| fail("grid"))?;
-        let mut samples = vec![glam_zero(); grid.len()];
-        let n = frames(scene, script.frames);
-        for frame in 0..n {
-            let page: &mut dyn PageModel<f64> = match (&mut dog, &mut other) {
-                (Some(d), _) => d,
-                (None, Some(o)) => o.as_mut(),
-                (None, None) => return Err(fail("no page model")),
-            };
-            let inputs: Vec<String> = touch_problem(scene, script.at(frame), frame, page)
-                .into_iter()
-                .collect();
-            let t = Instant::now();
-            let step = page.step();
-            let step_ms = t.elapsed().as_secs_f64() * 1e3;
-            let mut record = match &step {
-                Ok(step) => {
-                    let status = match step.status {
-                        PageStatus::Moved => "Moved",
-                        PageStatus::Unreachable => "Unreachable",
-                        PageStatus::Stalled => "Stalled",
-                        _ => "Other",
-                    };
-                    FrameRecord {
-                        failed: step.status == PageStatus::Stalled,
-                        ..FrameRecord::new(frame, step_ms, status.to_string(), false)
-                    }
-                }
-                Err(e) => FrameRecord {
-                    failed: true,
-                    ..FrameRecord::new(frame, step_ms, format!("Refused ({e})"), false)
-                },
-            };
-            record.inputs = inputs;
-            let sampled = page
-                .sample(grid, &mut samples)
-                .and_then(|()| frame_metrics(grid, page.size(), &samples));
-            match sampled {
-                Ok(m) => {
-                    record.max_stretch = Some(m.max_stretch);
-                    record.rmse_stretch = Some(m.rmse_stretch);
-                    record.angle_defect = Some(m.max_angle_defect);
-                    record.nonfinite = !samples.iter().all(|p| p.is_finite());
-                }
-                // A page that cannot be sampled or measured is not a finite page.
-                Err(_) => record.nonfinite = true,
-            }
-            if let Some(d) = &dog {
-                record = book_record(record, d.book(), d.last_report(), step.is_ok());
-            }
-            records.push(record);
-            let page: &dyn PageModel<f64> = match (&dog, &other) {
-                (Some(d), _) => d,
-                (None, Some(o)) => o.as_ref(),
-                (None, None) => return Err(fail("no page model")),
-            };
-            observe(frame, n, Shape::Page(page));
-            progress(frame + 1, n);
-        }
-        if let Some(d) = &dog {
-            let c = d.book().counts();
-            final_pages = Some([c.left, c.right, c.active]);
-        }
-    } else {
-        let name = scene
-            .input
-            .get_ref()
-            .fixture
-            .as_ref()
-            .ok_or_else(|| fail("no input"))?;
-        let text = fixtures::text(name.get_ref()).ok_or_else(|| fail("unknown fixture"))?;
-        let mut script = Script::parse(text).map_err(fail)?;
-        if let Some(k) = &scene.input.get_ref().pages {
-            for e in &mut script.events {
-                if let Action::Grab { pages, .. } = &mut e.action {
-                    *pages = *k.get_ref();
-                }
-            }
-        }
-        let mut book = Book::<f64>::new(book_settings(scene)).map_err(fail)?;
-        let n = frames(scene, script.frames);
-        for frame in 0..n {
-            let mut inputs = Vec::new();
-            for e in script.events_at(frame) {
-                let outcome = book.apply(script.camera, script.forward, e.action);
-                inputs.extend(input_problem(frame, outcome));
-            }
-            let t = Instant::now();
-            let step = book.step();
-            let step_ms = t.elapsed().as_secs_f64() * 1e3;
-            let record = match &step {
-                Ok(_) => FrameRecord::new(frame, step_ms, String::new(), false),
-                Err(e) => FrameRecord {
-                    failed: true,
-                    ..FrameRecord::new(frame, step_ms, format!("Refused ({e})"), false)
-                },
-            };
-            let mut record = book_record(record, &book, step.as_ref().ok(), step.is_ok());
-            record.inputs = inputs;
-            records.push(record);
-            observe(frame, n, Shape::Book(&book));
-            progress(frame + 1, n);
-        }
-        let c = book.counts();
-        final_pages = Some([c.left, c.right, c.active]);
-    }
+    let (records, final_pages) = match (touch_input(scene)?, scene.precision()) {
+        (Some(touch), Precision::F64) => run_touch::<f64>(scene, touch, progress, observe)?,
+        (Some(touch), Precision::F32) => run_touch::<f32>(scene, touch, progress, observe)?,
+        (None, Precision::F64) => run_book::<f64>(scene, progress, observe)?,
+        (None, Precision::F32) => run_book::<f32>(scene, progress, observe)?,
+    };
     Ok(Report::new(scene, records, final_pages))
 }
 
-/// `record` with the book's measures of the frame: the active page's stretch, DOG residual
-/// and penetration, the state's finiteness, and, from the step's `report` (when the step
-/// `stepped`), its solver status and work.
-fn book_record(
+/// The frames of a run and the final page counts (DOG book).
+type Run = (Vec<FrameRecord>, Option<[u32; 3]>);
+
+/// A page model of `scene` in precision `T` for touch input: the DOG page (kept by type: its
+/// book measures the page and counts the pages), else another model behind the trait.
+enum Page<T: Real> {
+    Dog(Box<DogPage<T>>),
+    Other(Box<dyn PageModel<T>>),
+}
+
+impl<T: Real> Page<T> {
+    fn new(scene: &Scene, seed: bool) -> Result<Self, RunError> {
+        Ok(match *scene.model.get_ref() {
+            ModelKind::Cone => {
+                let mut s = ConeSettings::default();
+                if seed {
+                    (s.width, s.height) = (T::from_f64(25.0), T::from_f64(25.0));
+                }
+                Self::Other(Box::new(ConePage::new(s).map_err(fail)?))
+            }
+            ModelKind::MassSpring => {
+                let s = spring_settings::<T>(scene, seed);
+                Self::Other(Box::new(SpringPage::new(s).map_err(fail)?))
+            }
+            ModelKind::Xpbd => {
+                let s = xpbd_settings::<T>(scene, seed);
+                Self::Other(Box::new(XpbdPage::new(s).map_err(fail)?))
+            }
+            ModelKind::Dog => {
+                Self::Dog(Box::new(DogPage::new(book_settings(scene)).map_err(fail)?))
+            }
+            other => return Err(fail(format!("no touch run for the {} model", other.name()))),
+        })
+    }
+
+    fn model(&self) -> &dyn PageModel<T> {
+        match self {
+            Self::Dog(d) => d.as_ref(),
+            Self::Other(o) => o.as_ref(),
+        }
+    }
+
+    fn model_mut(&mut self) -> &mut dyn PageModel<T> {
+        match self {
+            Self::Dog(d) => d.as_mut(),
+            Self::Other(o) => o.as_mut(),
+        }
+    }
+}
+
+/// The model time step $h$ (seconds) of a page model of `scene`; `None` for the cone,
+/// which has no step (one per frame).
+fn page_time_step(scene: &Scene, seed: bool) -> Option<f64> {
+    match *scene.model.get_ref() {
+        ModelKind::Dog => Some(book_settings::<f64>(scene).solver.time_step),
+        ModelKind::MassSpring => Some(spring_settings::<f64>(scene, seed).time_step),
+        ModelKind::Xpbd => Some(xpbd_settings::<f64>(scene, seed).time_step),
+        _ => None,
+    }
+}
+
+/// The steps frame `frame` takes at time step `h` (one per frame without a step).
+fn frame_steps(frame: u32, h: Option<f64>) -> u32 {
+    h.map_or(1, |h| clock::steps_in_frame(frame, h))
+}
+
+/// The collision tests and snapshots of the steps of a frame (DOG book).
+#[derive(Default)]
+struct FrameWork {
+    contact_tests: usize,
+    snapshot: bool,
+}
+
+impl FrameWork {
+    fn add<T: Real>(&mut self, report: Option<&BookStepReport<T>>) {
+        if let Some(r) = report {
+            self.contact_tests += r.contacts.tested;
+            self.snapshot |= r.snapshot;
+        }
+    }
+
+    /// `record` with the frame's totals in place of its last step's.
+    fn total(&self, record: FrameRecord) -> FrameRecord {
+        FrameRecord {
+            contact_tests: record.contact_tests.map(|_| self.contact_tests),
+            snapshot: record.snapshot.map(|_| self.snapshot),
+            ..record
+        }
+    }
+}
+
+/// Runs a page model in precision `T` through touch input `(script, seed)`.
+fn run_touch<T: Real>(
+    scene: &Scene,
+    (script, seed): (Gestures, bool),
+    mut progress: impl FnMut(u32, u32),
+    mut observe: impl FnMut(u32, u32, Shape<'_>),
+) -> Result<Run, RunError> {
+    let mut page = Page::<T>::new(scene, seed)?;
+    let h = page_time_step(scene, seed);
+    let grid = QuadGrid::new(RENDER_QUADS.0, RENDER_QUADS.1).ok_or_else(|| fail("grid"))?;
+    let mut samples = vec![T::Vec3::ZERO; grid.len()];
+    let mut records = Vec::new();
+    let n = frames(scene, script.frames);
+    for frame in 0..n {
+        let inputs: Vec<String> = touch_problem(scene, script.at(frame), frame, page.model_mut())
+            .into_iter()
+            .collect();
+        let (wanted, mut steps) = (frame_steps(frame, h), 0);
+        let mut work = FrameWork::default();
+        let t = Instant::now();
+        let mut step = Err(PageError::InvalidInput { what: "no step" });
+        while steps < wanted {
+            step = page.model_mut().step();
+            steps += 1;
+            if let Page::Dog(d) = &page {
+                work.add(d.last_report());
+            }
+            // A failed step ends the frame: the model kept its state.
+            if step
+                .as_ref()
+                .map_or(true, |s| s.status == PageStatus::Stalled)
+            {
+                break;
+            }
+        }
+        let step_ms = t.elapsed().as_secs_f64() * 1e3;
+        let mut record = match &step {
+            Ok(step) => {
+                let status = match step.status {
+                    PageStatus::Moved => "Moved",
+                    PageStatus::Unreachable => "Unreachable",
+                    PageStatus::Stalled => "Stalled",
+                    _ => "Other",
+                };
+                FrameRecord {
+                    failed: step.status == PageStatus::Stalled,
+                    ..FrameRecord::new(frame, steps, step_ms, status.to_string(), false)
+                }
+            }
+            Err(e) => FrameRecord {
+                failed: true,
+                ..FrameRecord::new(frame, steps, step_ms, format!("Refused ({e})"), false)
+            },
+        };
+        record.inputs = inputs;
+        let model = page.model();
+        let sampled = model
+            .sample(grid, &mut samples)
+            .and_then(|()| frame_metrics(grid, model.size(), &samples));
+        match sampled {
+            Ok(m) => {
+                record.max_stretch = Some(m.max_stretch.to_f64());
+                record.rmse_stretch = Some(m.rmse_stretch.to_f64());
+                record.angle_defect = Some(m.max_angle_defect.to_f64());
+                record.nonfinite = !samples.iter().all(|p| real::vec_is_finite::<T>(*p));
+            }
+            // A page that cannot be sampled or measured is not a finite page.
+            Err(_) => record.nonfinite = true,
+        }
+        if let Page::Dog(d) = &page {
+            record = work.total(book_record(record, d.book(), d.last_report(), step.is_ok()));
+        }
+        records.push(record);
+        observe(frame, n, Shape::Page(&PageView(page.model())));
+        progress(frame + 1, n);
+    }
+    let final_pages = match &page {
+        Page::Dog(d) => {
+            let c = d.book().counts();
+            Some([c.left, c.right, c.active])
+        }
+        Page::Other(_) => None,
+    };
+    Ok((records, final_pages))
+}
+
+/// Runs the DOG book in precision `T` through the scene's book fixture.
+fn run_book<T: Real>(
+    scene: &Scene,
+    mut progress: impl FnMut(u32, u32),
+    mut observe: impl FnMut(u32, u32, Shape<'_>),
+) -> Result<Run, RunError> {
+    let name = scene
+        .input
+        .get_ref()
+        .fixture
+        .as_ref()
+        .ok_or_else(|| fail("no input"))?;
+    let text = fixtures::text(name.get_ref()).ok_or_else(|| fail("unknown fixture"))?;
+    let mut script = Script::parse(text).map_err(fail)?;
+    if let Some(k) = &scene.input.get_ref().pages {
+        for e in &mut script.events {
+            if let Action::Grab { pages, .. } = &mut e.action {
+                *pages = *k.get_ref();
+            }
+        }
+    }
+    let mut book = Book::<T>::new(book_settings(scene)).map_err(fail)?;
+    let h = Some(book.settings().solver.time_step.to_f64());
+    let mut records = Vec::new();
+    let n = frames(scene, script.frames);
+    for frame in 0..n {
+        let mut inputs = Vec::new();
+        for e in script.events_at(frame) {
+            let outcome = book.apply(script.camera, script.forward, e.action);
+            inputs.extend(input_problem(frame, outcome));
+        }
+        let (wanted, mut steps) = (frame_steps(frame, h), 0);
+        let mut work = FrameWork::default();
+        let t = Instant::now();
+        let mut step = Err(BookError::InvalidSetting {
+            field: "no step",
+            requirement: "taken",
+        });
+        while steps < wanted {
+            step = book.step();
+            steps += 1;
+            work.add(step.as_ref().ok());
+            // A failed step ends the frame: the book kept its state.
+            if step.as_ref().map_or(true, |r| !r.solver.status.advanced()) {
+                break;
+            }
+        }
+        let step_ms = t.elapsed().as_secs_f64() * 1e3;
+        let record = match &step {
+            Ok(_) => FrameRecord::new(frame, steps, step_ms, String::new(), false),
+            Err(e) => FrameRecord {
+                failed: true,
+                ..FrameRecord::new(frame, steps, step_ms, format!("Refused ({e})"), false)
+            },
+        };
+        let mut record = work.total(book_record(record, &book, step.as_ref().ok(), step.is_ok()));
+        record.inputs = inputs;
+        records.push(record);
+        observe(frame, n, Shape::Book(&book));
+        progress(frame + 1, n);
+    }
+    let c = book.counts();
+    Ok((records, Some([c.left, c.right, c.active])))
+}
+
+/// `record` with the book's measures of the frame (after its last step), in `f64`: the
+/// active page's stretch, DOG residual and penetration, the state's finiteness, and, from
+/// the last step's `report` (when the step `stepped`), its solver status and work.
+fn book_record<T: Real>(
     record: FrameRecord,
-    book: &Book<f64>,
-    report: Option<&BookStepReport<f64>>,
+    book: &Book<T>,
+    report: Option<&BookStepReport<T>>,
     stepped: bool,
 ) -> FrameRecord {
     let stretch = book.stretch();
@@ -491,12 +535,12 @@ fn book_record(
         .x
         .iter()
         .chain(&book.state().v)
-        .all(|p| p.is_finite());
+        .all(|p| real::vec_is_finite::<T>(*p));
     let record = FrameRecord {
-        max_stretch: stretch.map(|s| s.0),
-        rmse_stretch: stretch.map(|s| s.1),
-        dog_residual: book.dog_residual(),
-        penetration: book.penetration(),
+        max_stretch: stretch.map(|s| s.0.to_f64()),
+        rmse_stretch: stretch.map(|s| s.1.to_f64()),
+        dog_residual: book.dog_residual().map(Real::to_f64),
+        penetration: book.penetration().map(Real::to_f64),
         nonfinite: record.nonfinite || !finite,
         ..record
     };
@@ -514,11 +558,11 @@ fn book_record(
 }
 
 /// What a touch input did wrong, if anything: a grab that missed the page, a refused drag.
-fn touch_problem(
+fn touch_problem<T: Real>(
     scene: &Scene,
     touch: Touch,
     frame: u32,
-    page: &mut dyn PageModel<f64>,
+    page: &mut dyn PageModel<T>,
 ) -> Option<String> {
     let e = touch.apply(page).err()?;
     Some(match touch {
@@ -547,10 +591,6 @@ fn input_problem(frame: u32, outcome: Result<InputOutcome, BookError>) -> Option
         Ok(_) => None,
         Err(e) => Some(format!("input at frame {frame} was refused ({e})")),
     }
-}
-
-fn glam_zero() -> <f64 as folio_kernels::Real>::Vec3 {
-    <f64 as folio_kernels::Real>::Vec3::ZERO
 }
 
 /// The `q`-quantile (0..=1) of `v` (0 when empty).
@@ -597,6 +637,7 @@ pub(crate) fn summarize(
         frames: records.len() as u32,
         step_ms_median: quantile(&steps, 0.5),
         step_ms_p99: quantile(&steps, 0.99),
+        steps_total: records.iter().map(|r| u64::from(r.steps)).sum(),
         max_stretch_mean: mean(|r| r.max_stretch),
         rmse_stretch_mean: mean(|r| r.rmse_stretch),
         max_stretch_max: max(|r| r.max_stretch),
@@ -643,6 +684,7 @@ impl Report {
         let mut report = Self {
             scene: scene.name.clone(),
             model: scene.model.get_ref().name(),
+            precision: scene.precision().name(),
             summary,
             frames: records,
             tearing: None,

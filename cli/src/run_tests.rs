@@ -54,3 +54,79 @@ fn a_grab_that_misses_is_reported_at_its_frame() {
     assert_eq!(first.why, "grab at frame 30 missed the page");
     assert!(!report.good());
 }
+
+/// The built-in page turn with `[solver]` lines added before its `[expect]`.
+fn page_turn_with(solver: &str) -> Scene {
+    let base = folio_scene::builtin::scene("page-turn").expect("the page turn");
+    let text = base.replace("[expect]", &format!("[solver]\n{solver}\n\n[expect]"));
+    scene(&text)
+}
+
+/// Frames are in time: at `time_step = 1/120` the page turn runs its 750 frames of 1/60 s
+/// in two steps each, and the page still lands on the left block (it played the gesture at
+/// half speed, one step per frame).
+#[test]
+fn a_half_time_step_takes_two_steps_a_frame_and_turns_the_page() {
+    let s = page_turn_with("time_step = 0.008333333333333333");
+    let report = run(&s, |_, _| {}, |_, _, _| {}).expect("runs");
+    assert_eq!(report.frames.len(), 750);
+    assert!(report.frames.iter().all(|f| f.steps == 2));
+    assert_eq!(report.summary.steps_total, 1500);
+    assert_eq!(report.summary.final_pages, Some([51, 49, 0]));
+    assert!(report.good(), "{:?}", report.summary.health);
+    let plain = run(
+        &scene(folio_scene::builtin::scene("page-turn").unwrap()),
+        |_, _| {},
+        |_, _, _| {},
+    )
+    .expect("runs");
+    assert!(plain.frames.iter().all(|f| f.steps == 1));
+    assert_eq!(plain.summary.final_pages, report.summary.final_pages);
+}
+
+/// `precision = "f32"` runs the book in `f32`: every frame finite, the page turns as in
+/// `f64`, and the report names the precision.
+#[test]
+fn an_f32_page_turn_turns_the_page() {
+    let report = run(
+        &page_turn_with("precision = \"f32\""),
+        |_, _| {},
+        |_, _, _| {},
+    )
+    .expect("runs");
+    assert_eq!(report.precision, "f32");
+    assert_eq!(report.frames.len(), 750);
+    assert!(
+        report
+            .frames
+            .iter()
+            .all(|f| !f.nonfinite && !f.nonfinite_input && !f.failed)
+    );
+    assert_eq!(report.summary.final_pages, Some([51, 49, 0]));
+    assert!(report.good(), "{:?}", report.summary.health);
+}
+
+/// The page models run in `f32` too, through the same loop: the XPBD page's built-in turn,
+/// drawn through [`super::Shape`] (its mesh and its page points in `f64`).
+#[test]
+fn an_f32_page_model_runs_and_is_drawn() {
+    let base = folio_scene::builtin::scene("xpbd-turn").expect("the xpbd turn");
+    let text = format!("{}\n[solver]\nprecision = \"f32\"\n", base.trim_end());
+    let (mut meshes, mut points) = (0, Vec::new());
+    let grid = folio_geometry::QuadGrid::new(4, 5).expect("a grid");
+    let report = run(
+        &scene(&text),
+        |_, _| {},
+        |_, _, shape| {
+            let mut mesh = folio_geometry::mesh::TriMesh::new();
+            meshes += usize::from(shape.mesh(&mut mesh).is_ok());
+            assert!(shape.page_points(grid, &mut points));
+        },
+    )
+    .expect("runs");
+    assert_eq!(report.precision, "f32");
+    assert_eq!(meshes, report.frames.len());
+    assert_eq!(points.len(), grid.len());
+    assert!(points.iter().flatten().all(|c| c.is_finite()));
+    assert!(report.good(), "{:?}", report.summary.health);
+}

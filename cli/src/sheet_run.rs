@@ -1,6 +1,7 @@
 //! Running a sheet scene (`model = "sheet"`, seed `002_…`): before every frame the hands
-//! place their fingers ([`folio_scene::hands`]), the sheet steps (physics, cone remesh, tearing:
-//! `folio_tearing::sheet::TearingSheet::step`), and the frame is measured; the run ends in
+//! place their fingers ([`folio_scene::hands`]), the sheet takes the frame's steps (physics,
+//! cone remesh, tearing: `folio_tearing::sheet::TearingSheet::step`; a frame is 1/60 s,
+//! [`folio_scene::clock`]), and the frame is measured; the run ends in
 //! a [`Report`] whose summary gives the tears' lengths and whose [`TearingLog`] lists every
 //! propagation and tear path.
 //!
@@ -15,6 +16,7 @@ use folio_geometry::sheet::NONE;
 use folio_tearing::{Edit, Kind, Propagation};
 use serde::Serialize;
 
+use folio_scene::clock::steps_in_frame;
 use folio_scene::scene::Scene;
 
 use crate::run::{FrameRecord, Report, RunError, Shape, fail};
@@ -143,6 +145,7 @@ pub fn run(
 ) -> Result<Report, RunError> {
     let (mut sheet, mut hands) = folio_scene::sheet::setup(scene).map_err(|e| fail(e.1))?;
     let n = folio_scene::sheet::frames(scene).map_err(|e| fail(e.1))?;
+    let h = sheet.settings().time_step;
     let mut records = Vec::with_capacity(n as usize);
     let mut propagations = Vec::new();
     for frame in 0..n {
@@ -154,8 +157,21 @@ pub fn run(
             .into_iter()
             .collect();
         let before = sheet.propagations().len();
+        let (wanted, mut steps) = (steps_in_frame(frame, h), 0);
+        let (mut propagated, mut refused, mut flips) = (0, 0, 0);
         let t = Instant::now();
-        let step = sheet.step();
+        let mut step = sheet.step();
+        loop {
+            steps += 1;
+            propagated += step.propagations;
+            refused += step.refused;
+            flips += step.flips;
+            // A failed step ends the frame: the sheet kept its state.
+            if steps >= wanted || !step.status.advanced() {
+                break;
+            }
+            step = sheet.step();
+        }
         let step_ms = t.elapsed().as_secs_f64() * 1e3;
         propagations.extend(
             sheet.propagations()[before..]
@@ -172,12 +188,12 @@ pub fn run(
         records.push(FrameRecord {
             max_stretch: Some(max),
             rmse_stretch: Some(rmse),
-            propagations: Some(step.propagations),
-            refused: Some(step.refused),
-            flips: Some(step.flips),
+            propagations: Some(propagated),
+            refused: Some(refused),
+            flips: Some(flips),
             triangles: Some(mesh.triangle_count()),
             inputs,
-            ..FrameRecord::new(frame, step_ms, String::new(), !finite).solver(step.status)
+            ..FrameRecord::new(frame, steps, step_ms, String::new(), !finite).solver(step.status)
         });
         observe(frame, n, Shape::Sheet(&sheet));
         progress(frame + 1, n);

@@ -1,7 +1,8 @@
 //! The run's timeline (`timeline.svg`): step time and page stretch over the frames, as a
 //! self-contained SVG of two stacked panels sharing the frame axis.
 //!
-//! - Top: wall time of each step in milliseconds on a logarithmic axis (step times span
+//! - Top: wall time of each frame's steps in milliseconds (its compute time; a frame is
+//!   1/60 s of model time and may take several steps) on a logarithmic axis (times span
 //!   decades: a book at rest steps its blocks only, a held page adds the page's unknowns
 //!   and collision rounds), decade ticks.
 //! - Bottom: the largest relative edge stretch $\max \lvert \ell/\ell_0 - 1\rvert$ of the
@@ -251,7 +252,7 @@ fn panel(svg: &mut String, index: usize, title: &str, values: &[f64], log: bool,
     flush(svg, &mut run);
 }
 
-/// The timeline of a run (module docs): `step_ms[i]` is frame `i`'s step time in
+/// The timeline of a run (module docs): `step_ms[i]` is frame `i`'s compute time in
 /// milliseconds, `stretch[i]` its largest edge stretch as a fraction (0.11 = 11 %), `None`
 /// without an active page. The frame count is the longer of the two slices.
 #[must_use]

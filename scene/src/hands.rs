@@ -7,10 +7,11 @@
 //! $\Delta c(t) = \sum_s v_s\thinspace d_s(t)$ and turns by $R(t) = \prod_s \exp([\omega_s]_\times
 //! d_s(t))$ (later segments on the left), with $d_s(t)$ the time of segment $s$ elapsed by
 //! $t$; finger $k$ is at $c_0 + \Delta c(t) + R(t)(p_k - c_0)$: the spin turns the fingers
-//! about the moving centre. Times are simulated seconds: frame $f$ (one step of
-//! `solver.time_step`, 1/60 by default) ends at $t = (f + 1) h$, and the fingers are placed
-//! at that time before its step. A release at time $r$ lets go before frame
-//! $\mathrm{round}(r / h)$.
+//! about the moving centre. Times are simulated seconds: frame $f$ (1/60 s,
+//! [`crate::clock::FRAME_SECONDS`] $= \Delta t$, whatever the sheet's `solver.time_step`)
+//! ends at $t = (f + 1)\thinspace\Delta t$, and the fingers are placed at that time before
+//! the frame's steps. A release at time $r$ lets go before frame
+//! $\mathrm{round}(r / \Delta t)$.
 
 use core::ops::Range;
 
@@ -187,7 +188,8 @@ pub fn check(hands: &Spanned<Vec<Spanned<HandSpec>>>, size: [f64; 2]) -> Result<
 }
 
 /// The frames a run of checked `hands` takes when the scene sets none: up to the last
-/// move's end or release, plus [`SETTLE_SECONDS`], at `time_step` seconds per frame.
+/// move's end or release, plus [`SETTLE_SECONDS`], at `time_step` seconds per frame (a run
+/// passes [`crate::clock::FRAME_SECONDS`]).
 ///
 /// # Errors
 /// A move without an end of a hand that never lets go (it runs to the end of the run, so
@@ -279,7 +281,7 @@ fn pose(moves: &[Move], t: f64) -> ([f64; 3], Rotation) {
 
 impl Hands {
     /// Every hand of checked `specs` pinches `sheet`; the hands run at `time_step` seconds
-    /// per frame.
+    /// per frame (a run passes [`crate::clock::FRAME_SECONDS`]).
     ///
     /// # Errors
     /// The span of a finger the sheet refuses (off the sheet, or on a point another finger

@@ -3,10 +3,10 @@
 //! Folio's scene files (TOML, `docs/scenes.md`): the scene types and their validation with
 //! line and column ([`scene`]), the timed events and hands that drive a run ([`events`],
 //! [`hands`]), the recorded fixtures and built-in scenes they name ([`fixtures`],
-//! [`builtin`]), the model settings a scene describes ([`settings`]) and the tearing sheet of
-//! a sheet scene ([`sheet`]); the limits a DOG book's settings must meet, shared with the C
-//! API ([`limits`]), a scene name's rules ([`name`]) and short numbers in messages
-//! ([`number`]).
+//! [`builtin`]), the frame clock (a frame is 1/60 s; [`clock`]), the model settings a scene
+//! describes ([`settings`]) and the tearing sheet of a sheet scene ([`sheet`]); the limits a
+//! DOG book's settings must meet, shared with the C API ([`limits`]), a scene name's rules
+//! ([`name`]) and short numbers in messages ([`number`]).
 //!
 //! Layers: the models (`folio-book`, `folio-pages`, `folio-tearing`) below; the `folio`
 //! command and the C API (`folio-capi`) above, both reading scenes through this crate.
@@ -15,6 +15,7 @@ extern crate alloc;
 
 pub mod book;
 pub mod builtin;
+pub mod clock;
 pub mod events;
 pub mod fixtures;
 pub mod hands;

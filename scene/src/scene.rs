@@ -192,8 +192,47 @@ pub struct SolverSection {
     pub newton_iterations: Option<Spanned<u32>>,
     /// Constraint projection iterations after a step (DOG; 0 is the seed's plain step).
     pub max_corrections: Option<Spanned<u32>>,
-    /// Substeps per frame (mass-spring, 1 to 64; xpbd, 1 to 1024).
+    /// Substeps per step (mass-spring, 1 to 64; xpbd, 1 to 1024).
     pub substeps: Option<Spanned<u32>>,
+    /// Quads of the page `[across, along]` (across from the spine, along it), each
+    /// [`GRID_RANGE`] (dog, mass-spring: particles are quads + 1, xpbd).
+    pub grid: Option<Spanned<[u32; 2]>>,
+    /// The precision the model runs in (dog, mass-spring, xpbd; default `"f64"`).
+    pub precision: Option<Spanned<Precision>>,
+    /// The eq. 3 residual at which Newton stops iterating (dog; finite, >= 0).
+    pub newton_tolerance: Option<Spanned<f64>>,
+    /// Include the constraint Hessian in the KKT matrix (dog; default false, the seed's).
+    pub constraint_hessian: Option<Spanned<bool>>,
+    /// Collision detect/resolve rounds per step (dog, 1 to 16; default 3, the seed's).
+    pub collision_rounds: Option<Spanned<u32>>,
+    /// The constraint projection after a step (dog; default true; `false` is
+    /// `max_corrections = 0`).
+    pub projection: Option<Spanned<bool>>,
+}
+
+/// The quads a page may have across and along (`solver.grid`), each.
+pub const GRID_RANGE: core::ops::RangeInclusive<u32> = 2..=64;
+
+/// The precision a model runs in (`solver.precision`).
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Precision {
+    /// `f64`, the reference (default).
+    #[default]
+    F64,
+    /// `f32`, the microcontroller path.
+    F32,
+}
+
+impl Precision {
+    /// The name used in scene files and reports (`"f64"`, `"f32"`).
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::F64 => "f64",
+            Self::F32 => "f32",
+        }
+    }
 }
 
 /// The input of a scene: a named recorded fixture, or timed events.
@@ -525,6 +564,15 @@ impl Scene {
         }
     }
 
+    /// The precision the scene's model runs in (`solver.precision`, default `f64`).
+    #[must_use]
+    pub fn precision(&self) -> Precision {
+        self.solver
+            .as_ref()
+            .and_then(|s| s.get_ref().precision.as_ref())
+            .map_or(Precision::F64, |p| *p.get_ref())
+    }
+
     /// The page size `[width, height]` (page units): every model's page is
     /// $W \times W\sqrt 2$, $W$ = `book.page_width` (default 12).
     #[must_use]
@@ -615,13 +663,26 @@ impl Scene {
         }
         let s = section.get_ref();
         if let Some(h) = &s.time_step {
+            // A finite step above a frame is told the scene's bound, not the book's.
+            if h.get_ref().is_finite() && !crate::clock::fits_in_frame(*h.get_ref()) {
+                return bad(
+                    h.span(),
+                    &format!(
+                        "solver.time_step must be at most one frame, 1/60 s (a frame takes \
+                         as many steps as keep the model on time), not {}",
+                        crate::number::show(*h.get_ref())
+                    ),
+                );
+            }
             if let Err(message) = crate::limits::time_step(*h.get_ref()) {
                 return bad(h.span(), &message);
             }
         }
+        self.check_new_solver_keys(text, model, s)?;
         let dog_only = [
             ("newton_iterations", &s.newton_iterations, 1..=20),
             ("max_corrections", &s.max_corrections, 0..=50),
+            ("collision_rounds", &s.collision_rounds, 1..=16),
         ];
         for (name, v, range) in dog_only {
             let Some(v) = v else { continue };
@@ -660,17 +721,112 @@ impl Scene {
         Ok(())
     }
 
+    /// The keys of `[solver]` that set the page's resolution and precision and the DOG
+    /// solver's tolerance, Hessian and projection: each for the models it applies to, in
+    /// range, at its own key.
+    fn check_new_solver_keys(
+        &self,
+        text: &str,
+        model: ModelKind,
+        s: &SolverSection,
+    ) -> Result<(), SceneError> {
+        let bad =
+            |span: Range<usize>, message: &str| Err(SceneError::at(text, Some(span), message));
+        if let Some(g) = &s.grid {
+            match model {
+                ModelKind::Dog | ModelKind::MassSpring | ModelKind::Xpbd => {}
+                ModelKind::Sheet => {
+                    return bad(
+                        g.span(),
+                        "solver.grid is for the dog, mass-spring and xpbd models; a sheet \
+                         sets its quads with sheet.nx and sheet.ny",
+                    );
+                }
+                _ => {
+                    return bad(
+                        g.span(),
+                        "solver.grid is for the dog, mass-spring and xpbd models",
+                    );
+                }
+            }
+            if !g.get_ref().iter().all(|q| GRID_RANGE.contains(q)) {
+                let (lo, hi) = (GRID_RANGE.start(), GRID_RANGE.end());
+                return bad(
+                    g.span(),
+                    &format!(
+                        "solver.grid = [across, along] quads, each between {lo} and {hi}, \
+                         not {:?}",
+                        g.get_ref()
+                    ),
+                );
+            }
+        }
+        if let Some(p) = &s.precision {
+            if model == ModelKind::Sheet && *p.get_ref() == Precision::F32 {
+                return bad(
+                    p.span(),
+                    "solver.precision = \"f32\" is for the dog, mass-spring and xpbd models; \
+                     a sheet scene runs in f64",
+                );
+            }
+        }
+        if let Some(t) = &s.newton_tolerance {
+            if model != ModelKind::Dog {
+                return bad(
+                    t.span(),
+                    "solver.newton_tolerance is for model = \"dog\" only",
+                );
+            }
+            let t_value = *t.get_ref();
+            if !(t_value.is_finite() && t_value >= 0.0) {
+                return bad(
+                    t.span(),
+                    &format!(
+                        "solver.newton_tolerance must be finite and >= 0, not {}",
+                        crate::number::show(t_value)
+                    ),
+                );
+            }
+        }
+        let flags = [
+            ("constraint_hessian", &s.constraint_hessian),
+            ("projection", &s.projection),
+        ];
+        for (name, v) in flags {
+            if let Some(v) = v.as_ref().filter(|_| model != ModelKind::Dog) {
+                return bad(
+                    v.span(),
+                    &format!("solver.{name} is for model = \"dog\" only"),
+                );
+            }
+        }
+        if let (Some(p), Some(m)) = (&s.projection, &s.max_corrections) {
+            let (on, corrections) = (*p.get_ref(), *m.get_ref());
+            if on != (corrections > 0) {
+                let message = if on {
+                    "solver.projection = true needs solver.max_corrections of at least 1 \
+                     (max_corrections = 0 switches the projection off)"
+                } else {
+                    "solver.projection = false switches the projection off: leave out \
+                     solver.max_corrections (or set it to 0)"
+                };
+                return bad(p.span(), message);
+            }
+        }
+        Ok(())
+    }
+
     /// The mass-spring page's settings as `folio run` builds them, checked by the page's
     /// own `validate()` (reported at `[solver]`, the only keys a scene sets).
     fn check_spring(&self) -> Result<(), (Range<usize>, String)> {
-        let checked = crate::settings::spring_settings(self, self.seed_fixture()).validate();
+        let checked = crate::settings::spring_settings::<f64>(self, self.seed_fixture()).validate();
         self.refused_settings("mass-spring", checked)
     }
 
     /// The XPBD page's settings as `folio run` builds them, checked by the page's own
     /// `validate()` (reported at `[solver]`, the only keys a scene sets).
     fn check_xpbd(&self) -> Result<(), (Range<usize>, String)> {
-        let checked = crate::settings::xpbd_settings(self, self.seed_fixture()).validate();
+        let checked = crate::settings::xpbd_settings::<f64>(self, self.seed_fixture()).validate();
         self.refused_settings("xpbd", checked)
     }
 
@@ -768,3 +924,7 @@ impl Scene {
         Ok(())
     }
 }
+
+#[cfg(test)]
+#[path = "solver_tests.rs"]
+mod solver_tests;

@@ -12,6 +12,19 @@ use crate::scene::Scene;
 
 /// The book settings of a DOG scene in precision `T`: its book, effects, weights and
 /// solver settings (the rest are the book's defaults in `T`).
+///
+/// `[solver]`: `grid` sets `quads_across` and `quads_along`; `newton_tolerance` sets
+/// `solver.tolerance` (Newton checks the eq. 3 residual before each iteration and stops at
+/// the first iterate within it, else after `newton_iterations`); `constraint_hessian`,
+/// `collision_rounds` and `max_corrections` set their fields, and `projection = false` sets
+/// `max_corrections = 0`.
+///
+/// Frames are in time ([`crate::clock`]): at a time step $h$ a frame takes
+/// $k = \mathrm{round}(\Delta t_{\mathrm{frame}} / h) \ge 1$ steps, so the three counts the
+/// book keeps in steps, `merge_frames` (slow steps before a released page merges),
+/// `flip_frames` (steps of a bookmarked page's flight) and `history_interval` (steps between
+/// bookmarking snapshots), are its defaults (meant at one step per frame) times $k$: they
+/// keep their meaning in seconds at any $h$.
 #[must_use]
 pub fn book_settings<T: Real>(scene: &Scene) -> BookSettings<T> {
     let mut s = BookSettings::default();
@@ -37,50 +50,85 @@ pub fn book_settings<T: Real>(scene: &Scene) -> BookSettings<T> {
             &mut s.solver.newton_iterations,
             v.newton_iterations.as_ref(),
         );
+        set_real(&mut s.solver.tolerance, v.newton_tolerance.as_ref());
+        set(
+            &mut s.solver.constraint_hessian,
+            v.constraint_hessian.as_ref(),
+        );
+        set(&mut s.collision_rounds, v.collision_rounds.as_ref());
         set(&mut s.max_corrections, v.max_corrections.as_ref());
+        if v.projection.as_ref().is_some_and(|p| !*p.get_ref()) {
+            s.max_corrections = 0;
+        }
+        if let Some(g) = &v.grid {
+            [s.quads_across, s.quads_along] = g.get_ref().map(|q| q as usize);
+        }
     }
+    let k = crate::clock::steps_per_frame(s.solver.time_step.to_f64());
+    s.merge_frames = s.merge_frames.saturating_mul(k);
+    s.flip_frames = s.flip_frames.saturating_mul(k);
+    s.history_interval = s.history_interval.saturating_mul(k);
     s
 }
 
-/// The mass-spring settings of a scene: seed 003's experiment on its fixture, else the
-/// defaults; its effects (gravity, the table) and solver settings.
+/// The mass-spring settings of a scene in precision `T`: seed 003's experiment on its
+/// fixture, else the defaults; its effects (gravity, the table) and solver settings (time
+/// step, substeps, `grid`: particles are quads + 1). A `grid` keeps the page's total mass,
+/// weight and damping (each particle's share scales by the old count over the new) and the
+/// springs' stiffness; a finer grid has lighter particles, so the explicit integrator may
+/// then need more substeps (the page's `validate()`, run by the scene check, says so).
 #[must_use]
-pub fn spring_settings(scene: &Scene, seed: bool) -> SpringSettings<f64> {
+pub fn spring_settings<T: Real>(scene: &Scene, seed: bool) -> SpringSettings<T> {
     let mut s = if seed {
         SpringSettings::seed_experiment()
     } else {
         SpringSettings::default()
     };
     if !scene.has_effect("gravity") {
-        s.particle_weight = 0.0;
+        s.particle_weight = T::ZERO;
     }
     s.floor = scene.has_effect("collisions");
     if let Some(solver) = &scene.solver {
         let v = solver.get_ref();
-        set(&mut s.time_step, v.time_step.as_ref());
+        set_real(&mut s.time_step, v.time_step.as_ref());
         set(&mut s.substeps, v.substeps.as_ref());
+        if let Some(g) = &v.grid {
+            let before = s.particles_across * s.particles_along;
+            [s.particles_across, s.particles_along] = g.get_ref().map(|q| q as usize + 1);
+            // The same page: its mass, weight and damping shared by more (or fewer)
+            // particles; the springs keep their stiffness (a square lattice's membrane
+            // stiffness does not depend on its spacing).
+            let share =
+                T::from_f64(before as f64 / (s.particles_across * s.particles_along) as f64);
+            s.particle_mass *= share;
+            s.particle_weight *= share;
+            s.damping *= share;
+        }
     }
     s
 }
 
-/// The XPBD page's settings of a scene: its defaults (on seed 003's fixture, its
-/// $25 \times 25$ page of unit mass, as the cone takes there); its effects (gravity, the
-/// table) and solver settings (time step, substeps).
+/// The XPBD page's settings of a scene in precision `T`: its defaults (on seed 003's
+/// fixture, its $25 \times 25$ page of unit mass, as the cone takes there); its effects
+/// (gravity, the table) and solver settings (time step, substeps, `grid`).
 #[must_use]
-pub fn xpbd_settings(scene: &Scene, seed: bool) -> XpbdSettings<f64> {
+pub fn xpbd_settings<T: Real>(scene: &Scene, seed: bool) -> XpbdSettings<T> {
     let mut s = XpbdSettings::default();
     if seed {
-        (s.width, s.height) = (25.0, 25.0);
-        s.areal_density = 1.0 / (25.0 * 25.0);
+        (s.width, s.height) = (T::from_f64(25.0), T::from_f64(25.0));
+        s.areal_density = T::from_f64(1.0 / (25.0 * 25.0));
     }
     if !scene.has_effect("gravity") {
-        s.gravity = 0.0;
+        s.gravity = T::ZERO;
     }
     s.floor = scene.has_effect("collisions");
     if let Some(solver) = &scene.solver {
         let v = solver.get_ref();
-        set(&mut s.time_step, v.time_step.as_ref());
+        set_real(&mut s.time_step, v.time_step.as_ref());
         set(&mut s.substeps, v.substeps.as_ref());
+        if let Some(g) = &v.grid {
+            [s.quads_across, s.quads_along] = g.get_ref().map(|q| q as usize);
+        }
     }
     s
 }

@@ -10,6 +10,7 @@ use folio_tearing::TearingError;
 use folio_tearing::sheet::{SheetSettings, TearingSheet, TearingSheetError};
 use toml::Spanned;
 
+use crate::clock::FRAME_SECONDS;
 use crate::hands::{self, Hands};
 use crate::scene::{HandSpec, Scene};
 use crate::settings::sheet_settings;
@@ -40,10 +41,7 @@ fn hand_specs(scene: &Scene) -> Result<&Spanned<Vec<Spanned<HandSpec>>>, Problem
 pub fn frames(scene: &Scene) -> Result<u32, Problem> {
     match &scene.frames {
         Some(f) => Ok(*f.get_ref()),
-        None => hands::default_frames(
-            hand_specs(scene)?.get_ref(),
-            sheet_settings(scene).time_step,
-        ),
+        None => hands::default_frames(hand_specs(scene)?.get_ref(), FRAME_SECONDS),
     }
 }
 
@@ -77,7 +75,7 @@ pub fn setup(scene: &Scene) -> Result<(TearingSheet<f64>, Hands), Problem> {
     }
     let mut sheet =
         TearingSheet::with_mesh(mesh, settings).map_err(|e| (whole_sheet(scene), e.to_string()))?;
-    let hands = Hands::grab(&mut sheet, specs.get_ref(), settings.time_step)?;
+    let hands = Hands::grab(&mut sheet, specs.get_ref(), FRAME_SECONDS)?;
     Ok((sheet, hands))
 }
 
