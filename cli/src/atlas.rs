@@ -51,6 +51,8 @@ pub struct Costs {
     pub frame_ms_median: f64,
     /// 99th percentile (milliseconds).
     pub frame_ms_p99: f64,
+    /// Heap allocations per model step.
+    pub allocations_per_step: f64,
 }
 
 /// One measured variant (`atlas.json`'s `variants`).
@@ -118,7 +120,12 @@ pub struct Atlas {
     pub proof: Proof,
     /// Every variant.
     pub variants: Vec<Row>,
+    /// The scene's model on [`CONVERGENCE_GRIDS`] (`None`: a model without a grid, the cone).
+    pub convergence: Option<Convergence>,
 }
+
+/// The grids of the atlas's convergence study, each twice as fine as the one before.
+pub const CONVERGENCE_GRIDS: [[i64; 2]; 3] = [[6, 8], [12, 16], [24, 32]];
 
 /// The knobs of `variant` as a map.
 fn knobs(variant: &Variant) -> BTreeMap<String, toml::Value> {
@@ -198,8 +205,7 @@ pub fn measure(
         .filter(|e| e.is_finite())
         .fold(f64::INFINITY, f64::min);
     let refinement = refined_run.map(|r| errors(&reference_run, &r, width));
-    let converged =
-        refinement.is_some_and(|e| e.rms_mean < PROOF_FRACTION * smallest_error);
+    let converged = refinement.is_some_and(|e| e.rms_mean < PROOF_FRACTION * smallest_error);
     Ok(Atlas {
         scene: base.name.clone(),
         frames: reference_run.frames.len(),
@@ -214,6 +220,7 @@ pub fn measure(
             costs: costs(&reference_run),
         },
         variants: rows,
+        convergence: None,
     })
 }
 
@@ -271,6 +278,7 @@ fn costs(run: &Trace) -> Costs {
     Costs {
         frame_ms_median: s.step_ms_median,
         frame_ms_p99: s.step_ms_p99,
+        allocations_per_step: s.allocations_per_step,
     }
 }
 
@@ -314,9 +322,7 @@ fn row(variant: &Variant, run: Result<Trace, String>, reference: &Trace, width: 
 /// mean RMS error.
 fn mark_pareto(rows: &mut [Row]) {
     let point = |r: &Row| match (r.good, r.costs, r.errors) {
-        (true, Some(c), Some(e)) if e.rms_mean.is_finite() => {
-            Some((c.frame_ms_median, e.rms_mean))
-        }
+        (true, Some(c), Some(e)) if e.rms_mean.is_finite() => Some((c.frame_ms_median, e.rms_mean)),
         _ => None,
     };
     let points: Vec<Option<(f64, f64)>> = rows.iter().map(point).collect();
@@ -360,7 +366,9 @@ pub fn command(target: &str, budget_ms: Option<f64>, out: Option<PathBuf>) -> u8
         }
     };
     if *scene.model.get_ref() == folio_scene::scene::ModelKind::Sheet {
-        eprintln!("{target}: the atlas measures page scenes; a tearing sheet has no reference page");
+        eprintln!(
+            "{target}: the atlas measures page scenes; a tearing sheet has no reference page"
+        );
         return exit::BAD_SCENE;
     }
     let out = out.unwrap_or_else(|| Path::new("out").join("atlas").join(&scene.name));
@@ -376,13 +384,22 @@ pub fn command(target: &str, budget_ms: Option<f64>, out: Option<PathBuf>) -> u8
         |done, total| progress.set(done, total),
     );
     progress.finish();
-    let atlas = match atlas {
+    let mut atlas = match atlas {
         Ok(a) => a,
         Err(e) => {
             eprintln!("{target}: {e}");
             return exit::BAD_RUN;
         }
     };
+    if model != "cone" {
+        match convergence(&scene, &text, &CONVERGENCE_GRIDS) {
+            Ok(c) => atlas.convergence = Some(c),
+            Err(e) => {
+                eprintln!("{target}: the convergence study could not run: {e}");
+                return exit::BAD_RUN;
+            }
+        }
+    }
     if let Err(e) = write(&atlas, &out) {
         eprintln!("{}: {e}", out.display());
         return exit::OUTPUT;
@@ -410,19 +427,28 @@ pub fn command(target: &str, budget_ms: Option<f64>, out: Option<PathBuf>) -> u8
                 println!("budget {budget} ms: {} -> {}", v.label, file.display());
             }
             None => {
-                eprintln!("budget {budget} ms: no good variant fits; the cheapest p99 is in atlas.md");
+                eprintln!(
+                    "budget {budget} ms: no good variant fits; the cheapest p99 is in atlas.md"
+                );
                 status = exit::BAD_RUN;
             }
         }
     }
     for row in atlas.variants.iter().filter(|r| r.refused.is_some()) {
-        eprintln!("variant {} could not run: {}", row.label, row.refused.as_deref().unwrap_or(""));
+        eprintln!(
+            "variant {} could not run: {}",
+            row.label,
+            row.refused.as_deref().unwrap_or("")
+        );
         status = exit::BAD_RUN;
     }
     if !atlas.proof.converged {
         eprintln!(
             "the reference is not proven converged: refined once more it moved by {} of the page width, not less than a tenth of the smallest error ({:.3e})",
-            atlas.proof.refinement.map_or("?".into(), |e| format!("{:.3e}", e.rms_mean)),
+            atlas
+                .proof
+                .refinement
+                .map_or("?".into(), |e| format!("{:.3e}", e.rms_mean)),
             atlas.proof.smallest_error
         );
         status = exit::BAD_RUN;

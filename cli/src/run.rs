@@ -40,6 +40,9 @@ pub struct FrameRecord {
     pub steps: u32,
     /// Wall time of all the frame's steps (milliseconds): the frame's compute time.
     pub step_ms: f64,
+    /// Heap allocations (and reallocations) the frame's steps made, counted by the `folio`
+    /// binary's allocator on the running thread ([`Meter`]).
+    pub allocations: usize,
     /// Max edge stretch of the page (when there is an active page).
     pub max_stretch: Option<f64>,
     /// RMSE edge stretch of the page.
@@ -92,6 +95,7 @@ impl FrameRecord {
             frame,
             steps,
             step_ms,
+            allocations: 0,
             max_stretch: None,
             rmse_stretch: None,
             angle_defect: None,
@@ -139,6 +143,8 @@ pub struct Summary {
     pub step_ms_p99: f64,
     /// Model steps over the run (frames take [`clock::FRAME_SECONDS`] of model time each).
     pub steps_total: u64,
+    /// Heap allocations per model step, over the run (DESIGN.md: stepping does not allocate).
+    pub allocations_per_step: f64,
     /// Mean over frames with a page of the max edge stretch (null without one).
     pub max_stretch_mean: Option<f64>,
     /// Mean over frames with a page of the RMSE edge stretch (null without one).
@@ -203,6 +209,32 @@ pub struct Report {
     /// The tears' log (sheet).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub tearing: Option<TearingLog>,
+}
+
+/// Measures a frame's steps: their wall time and the allocations the running thread made
+/// (counted by the `folio` binary's global allocator, `folio_tests::counting`).
+pub(crate) struct Meter {
+    started: Instant,
+    allocations: usize,
+}
+
+impl Meter {
+    /// Starts measuring.
+    #[must_use]
+    pub(crate) fn start() -> Self {
+        Self {
+            allocations: folio_tests::counting::allocations(),
+            started: Instant::now(),
+        }
+    }
+
+    /// The milliseconds and allocations since [`Meter::start`].
+    #[must_use]
+    pub(crate) fn stop(self) -> (f64, usize) {
+        let ms = self.started.elapsed().as_secs_f64() * 1e3;
+        let allocations = folio_tests::counting::allocations() - self.allocations;
+        (ms, allocations)
+    }
 }
 
 /// Why a checked scene could not run.
@@ -388,7 +420,7 @@ fn run_touch<T: Real>(
             .collect();
         let (wanted, mut steps) = (frame_steps(frame, h), 0);
         let mut work = FrameWork::default();
-        let t = Instant::now();
+        let meter = Meter::start();
         let mut step = Err(PageError::InvalidInput { what: "no step" });
         while steps < wanted {
             step = page.model_mut().step();
@@ -404,7 +436,7 @@ fn run_touch<T: Real>(
                 break;
             }
         }
-        let step_ms = t.elapsed().as_secs_f64() * 1e3;
+        let (step_ms, allocations) = meter.stop();
         let mut record = match &step {
             Ok(step) => {
                 let status = match step.status {
@@ -424,6 +456,7 @@ fn run_touch<T: Real>(
             },
         };
         record.inputs = inputs;
+        record.allocations = allocations;
         let model = page.model();
         let sampled = model
             .sample(grid, &mut samples)
@@ -488,7 +521,7 @@ fn run_book<T: Real>(
         }
         let (wanted, mut steps) = (frame_steps(frame, h), 0);
         let mut work = FrameWork::default();
-        let t = Instant::now();
+        let meter = Meter::start();
         let mut step = Err(BookError::InvalidSetting {
             field: "no step",
             requirement: "taken",
@@ -502,7 +535,7 @@ fn run_book<T: Real>(
                 break;
             }
         }
-        let step_ms = t.elapsed().as_secs_f64() * 1e3;
+        let (step_ms, allocations) = meter.stop();
         let record = match &step {
             Ok(_) => FrameRecord::new(frame, steps, step_ms, String::new(), false),
             Err(e) => FrameRecord {
@@ -512,6 +545,7 @@ fn run_book<T: Real>(
         };
         let mut record = work.total(book_record(record, &book, step.as_ref().ok(), step.is_ok()));
         record.inputs = inputs;
+        record.allocations = allocations;
         records.push(record);
         observe(frame, n, Shape::Book(&book));
         progress(frame + 1, n);
@@ -638,6 +672,12 @@ pub(crate) fn summarize(
         step_ms_median: quantile(&steps, 0.5),
         step_ms_p99: quantile(&steps, 0.99),
         steps_total: records.iter().map(|r| u64::from(r.steps)).sum(),
+        allocations_per_step: records.iter().map(|r| r.allocations as f64).sum::<f64>()
+            / records
+                .iter()
+                .map(|r| f64::from(r.steps))
+                .sum::<f64>()
+                .max(1.0),
         max_stretch_mean: mean(|r| r.max_stretch),
         rmse_stretch_mean: mean(|r| r.rmse_stretch),
         max_stretch_max: max(|r| r.max_stretch),

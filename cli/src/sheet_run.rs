@@ -9,8 +9,6 @@
 //! and $\ell_0$ in the pattern (every edge once): paper barely stretches, and a tear relieves
 //! it.
 
-use std::time::Instant;
-
 use folio_geometry::SheetMesh;
 use folio_geometry::sheet::NONE;
 use folio_tearing::{Edit, Kind, Propagation};
@@ -159,7 +157,7 @@ pub fn run(
         let before = sheet.propagations().len();
         let (wanted, mut steps) = (steps_in_frame(frame, h), 0);
         let (mut propagated, mut refused, mut flips) = (0, 0, 0);
-        let t = Instant::now();
+        let meter = crate::run::Meter::start();
         let mut step = sheet.step();
         loop {
             steps += 1;
@@ -172,7 +170,7 @@ pub fn run(
             }
             step = sheet.step();
         }
-        let step_ms = t.elapsed().as_secs_f64() * 1e3;
+        let (step_ms, allocations) = meter.stop();
         propagations.extend(
             sheet.propagations()[before..]
                 .iter()
@@ -193,6 +191,7 @@ pub fn run(
             flips: Some(flips),
             triangles: Some(mesh.triangle_count()),
             inputs,
+            allocations,
             ..FrameRecord::new(frame, steps, step_ms, String::new(), !finite).solver(step.status)
         });
         observe(frame, n, Shape::Sheet(&sheet));

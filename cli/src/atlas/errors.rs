@@ -46,7 +46,10 @@ pub fn errors(a: &Trace, b: &Trace, width: f64) -> Errors {
     // A frame one run lacks (a shorter run) counts as unmatched.
     let n = a.frames.len().max(b.frames.len());
     for f in 0..n {
-        let (x, r) = match (a.frames.get(f).cloned().flatten(), b.frames.get(f).cloned().flatten()) {
+        let (x, r) = match (
+            a.frames.get(f).cloned().flatten(),
+            b.frames.get(f).cloned().flatten(),
+        ) {
             (Some(x), Some(r)) if x.len() == r.len() => (x, r),
             (None, None) => continue,
             _ => {
@@ -75,7 +78,13 @@ pub fn errors(a: &Trace, b: &Trace, width: f64) -> Errors {
         tip_worst = tip_worst.max(t);
         frames += 1;
     }
-    let per = |s: f64| if frames == 0 { f64::INFINITY } else { s / frames as f64 };
+    let per = |s: f64| {
+        if frames == 0 {
+            f64::INFINITY
+        } else {
+            s / frames as f64
+        }
+    };
     Errors {
         rms_mean: per(rms_sum),
         rms_worst,
@@ -126,14 +135,24 @@ mod tests {
         let e = errors(&b, &a, 10.0);
         // Frame 0 has no page in either run.
         assert_eq!((e.frames, e.unmatched), (4, 0));
-        for v in [e.rms_mean, e.rms_worst, e.max_mean, e.max_worst, e.tip_rms, e.tip_worst] {
+        for v in [
+            e.rms_mean,
+            e.rms_worst,
+            e.max_mean,
+            e.max_worst,
+            e.tip_rms,
+            e.tip_worst,
+        ] {
             assert!((v - 0.05).abs() < 1e-12, "{e:?}");
         }
         assert_eq!(errors(&a, &a, 10.0).rms_worst, 0.0);
         let mut broken = flat([0.0; 3], 5);
         broken[3].as_mut().expect("a page")[7][1] = f64::NAN;
         let e = errors(&trace(broken), &a, 10.0);
-        assert!(e.max_worst.is_infinite() && e.rms_mean.is_infinite(), "{e:?}");
+        assert!(
+            e.max_worst.is_infinite() && e.rms_mean.is_infinite(),
+            "{e:?}"
+        );
         let mut late = flat([0.0; 3], 5);
         late[1] = None;
         assert_eq!(errors(&trace(late), &a, 10.0).unmatched, 1);

@@ -49,7 +49,9 @@ fn marker(model: &str, x: f64, y: f64, pareto: bool) -> String {
 
 /// Escapes `s` for SVG text.
 fn escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
 }
 
 /// The atlas plot (module docs).
@@ -61,8 +63,11 @@ pub fn svg(atlas: &Atlas) -> String {
         .enumerate()
         .filter_map(|(i, r)| {
             let (c, e) = (r.costs?, r.errors?);
-            (c.frame_ms_median > 0.0 && e.rms_mean > 0.0 && e.rms_mean.is_finite())
-                .then_some((i, c.frame_ms_median, 100.0 * e.rms_mean))
+            (c.frame_ms_median > 0.0 && e.rms_mean > 0.0 && e.rms_mean.is_finite()).then_some((
+                i,
+                c.frame_ms_median,
+                100.0 * e.rms_mean,
+            ))
         })
         .collect();
     let xs: Vec<f64> = points.iter().map(|p| p.1).collect();
@@ -151,11 +156,21 @@ pub fn svg(atlas: &Atlas) -> String {
     for (k, model) in ["dog", "cone", "mass-spring", "xpbd"].iter().enumerate() {
         let y = TOP + 20.0 + 22.0 * k as f64;
         s.push_str(&marker(model, RIGHT + 24.0, y, false));
-        let _ = write!(s, "<text x=\"{:.1}\" y=\"{:.1}\">{model}</text>", RIGHT + 38.0, y + 4.0);
+        let _ = write!(
+            s,
+            "<text x=\"{:.1}\" y=\"{:.1}\">{model}</text>",
+            RIGHT + 38.0,
+            y + 4.0
+        );
     }
     let y = TOP + 20.0 + 22.0 * 4.0;
     s.push_str(&marker("dog", RIGHT + 24.0, y, true));
-    let _ = write!(s, "<text x=\"{:.1}\" y=\"{:.1}\">Pareto front</text>", RIGHT + 38.0, y + 4.0);
+    let _ = write!(
+        s,
+        "<text x=\"{:.1}\" y=\"{:.1}\">Pareto front</text>",
+        RIGHT + 38.0,
+        y + 4.0
+    );
     let missing: Vec<&str> = atlas
         .variants
         .iter()

@@ -96,7 +96,10 @@ pub fn markdown(atlas: &Atlas) -> String {
             );
         }
         None => {
-            let _ = writeln!(out, "The reference was not refined: it is not proven converged.\n");
+            let _ = writeln!(
+                out,
+                "The reference was not refined: it is not proven converged.\n"
+            );
         }
     }
     out.push_str("| variant | frame ms median | p99 | RMS err mean % | RMS err worst % | max err worst % | tip err RMS % | stretch max % | stretch RMS mean % | DOG residual | penetration | pages L/R/held | run |\n");
@@ -106,5 +109,20 @@ pub fn markdown(atlas: &Atlas) -> String {
         out.push('\n');
     }
     out.push_str("\n(P): on the Pareto front of error against median frame time.\n");
+    if let Some(c) = &atlas.convergence {
+        let grids: Vec<String> = c.grids.iter().map(|[a, b]| format!("{a}x{b}")).collect();
+        let moves: Vec<String> = c
+            .differences
+            .iter()
+            .map(|e| format!("{} %", percent(Some(e.rms_mean))))
+            .collect();
+        let _ = writeln!(
+            out,
+            "\n**Resolution:** the scene's model on the grids {} (each twice as fine) moves by {} of the page width (mean RMS, each grid against the next): observed order {:.2}.",
+            grids.join(", "),
+            moves.join(", then "),
+            c.order
+        );
+    }
     out
 }
