@@ -208,6 +208,9 @@ pub struct SolverSection {
     /// The constraint projection after a step (dog; default true; `false` is
     /// `max_corrections = 0`).
     pub projection: Option<Spanned<bool>>,
+    /// The mass-spring page's integrator: `"semi-implicit-euler"` (the seed's, default) or
+    /// `"implicit-euler"` (mass-spring only).
+    pub integrator: Option<Spanned<folio_pages::spring::Integrator>>,
 }
 
 /// The quads a page may have across and along (`solver.grid`), each.
@@ -697,6 +700,14 @@ impl Scene {
                 return bad(
                     v.span(),
                     &format!("solver.{name} must be between {lo} and {hi}"),
+                );
+            }
+        }
+        if let Some(v) = &s.integrator {
+            if model != ModelKind::MassSpring {
+                return bad(
+                    v.span(),
+                    "solver.integrator is for model = \"mass-spring\" only",
                 );
             }
         }

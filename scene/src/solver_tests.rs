@@ -76,6 +76,12 @@ fn the_grid_and_precision_reach_the_page_models() {
     };
     assert!((mass(&s) - mass(&d)).abs() < 1e-6 * mass(&d));
     assert_eq!(s.stretch_stiffness, d.stretch_stiffness);
+    let (text, _) = with_solver("mass-spring-turn", "integrator = \"implicit-euler\"");
+    let scene = Scene::parse(&text).expect("checks");
+    assert_eq!(
+        spring_settings::<f64>(&scene, false).integrator,
+        folio_pages::spring::Integrator::ImplicitEuler
+    );
     let (text, _) = with_solver("xpbd-turn", "grid = [5, 7]");
     let scene = Scene::parse(&text).expect("checks");
     assert_eq!(scene.precision(), Precision::F64);
@@ -124,6 +130,11 @@ fn a_key_for_another_model_is_refused_at_its_value() {
         refused_at_value("xpbd-turn", key, "is for model = \"dog\" only");
         refused_at_value("mass-spring-turn", key, "is for model = \"dog\" only");
     }
+    refused_at_value(
+        "xpbd-turn",
+        "integrator = \"implicit-euler\"",
+        "is for model = \"mass-spring\" only",
+    );
     refused_at_value("tear-straight", "grid = [8, 6]", "sheet.nx and sheet.ny");
     refused_at_value(
         "tear-straight",
