@@ -169,3 +169,31 @@ fn the_f32_page_stays_within_five_percent_of_the_f64_page_at_every_frame() {
     let e = f32_against_f64();
     assert!(e.rms_worst < 0.05, "{e:?}");
 }
+
+/// `folio atlas` runs on every built-in page scene: each of its variants, the reference and
+/// the refined reference make a scene that checks.
+#[test]
+fn every_variant_of_every_built_in_page_scene_checks() {
+    for (name, text) in folio_scene::builtin::SCENES {
+        let scene = Scene::parse(text).expect("a built-in scene checks");
+        if *scene.model.get_ref() == folio_scene::scene::ModelKind::Sheet {
+            continue;
+        }
+        let table: toml::Table = toml::from_str(text).expect("TOML");
+        let model = scene.model.get_ref().name();
+        let all = variants::declared(model)
+            .into_iter()
+            .chain([variants::reference(false), variants::reference(true)])
+            .chain(
+                CONVERGENCE_GRIDS
+                    .iter()
+                    .filter(|_| model != "cone")
+                    .map(|&g| variants::on_grid(model, g)),
+            );
+        for v in all {
+            if let Err(e) = variant_scene(&scene, &table, &v) {
+                panic!("{name}, {}: {e}", v.label);
+            }
+        }
+    }
+}

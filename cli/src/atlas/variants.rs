@@ -272,11 +272,21 @@ pub fn declared(model: &str) -> Vec<Variant> {
     out
 }
 
-/// The scene's model on the grid `grid` (quads across x along), all else as written.
+/// The scene's model on the grid `grid` (quads across x along), all else as written. The
+/// mass-spring page's particles get lighter on a finer grid while its springs keep their
+/// stiffness, so its frequency grows as $\sqrt{N}$ with the particle count $N$: its
+/// substeps grow alike from the default's, keeping the explicit integrator's margin.
 #[must_use]
 pub fn on_grid(model: &str, grid: [i64; 2]) -> Variant {
+    let substeps = (model == "mass-spring").then(|| {
+        let d = folio_pages::spring::SpringSettings::<f64>::default();
+        let n = ((grid[0] + 1) * (grid[1] + 1)) as f64;
+        let ratio = (n / (d.particles_across * d.particles_along) as f64).sqrt();
+        (f64::from(d.substeps) * ratio.max(1.0)).ceil() as i64
+    });
     Knobs {
         grid: Some(grid),
+        substeps,
         ..Knobs::default()
     }
     .variant(model)
