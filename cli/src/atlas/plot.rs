@@ -1,4 +1,4 @@
-//! `atlas.svg`: each variant's mean RMS error against its median frame time, both axes
+//! `atlas.svg`: each variant's mean RMS error against its mean frame time, both axes
 //! logarithmic, one marker shape per page model, every marker labelled, and the Pareto
 //! front (the good variants nothing beats in both) drawn as a staircase. Variants that
 //! could not run, or whose error is not finite, are listed under the plot instead.
@@ -63,9 +63,9 @@ pub fn svg(atlas: &Atlas) -> String {
         .enumerate()
         .filter_map(|(i, r)| {
             let (c, e) = (r.costs?, r.errors?);
-            (c.frame_ms_median > 0.0 && e.rms_mean > 0.0 && e.rms_mean.is_finite()).then_some((
+            (c.frame_ms_mean > 0.0 && e.rms_mean > 0.0 && e.rms_mean.is_finite()).then_some((
                 i,
-                c.frame_ms_median,
+                c.frame_ms_mean,
                 100.0 * e.rms_mean,
             ))
         })
@@ -77,7 +77,7 @@ pub fn svg(atlas: &Atlas) -> String {
         s,
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{WIDTH}\" height=\"{HEIGHT}\" viewBox=\"0 0 {WIDTH} {HEIGHT}\" font-family=\"sans-serif\" font-size=\"12\">\
          <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\
-         <text x=\"{LEFT}\" y=\"28\" font-size=\"16\">Accuracy atlas of {}: mean RMS error (% of page width) against median frame time (ms)</text>",
+         <text x=\"{LEFT}\" y=\"28\" font-size=\"16\">Accuracy atlas of {}: mean RMS error (% of page width) against mean frame time (ms)</text>",
         escape(&atlas.scene)
     );
     let (Some(x_axis), Some(y_axis)) = (log_axis((RIGHT, LEFT), &xs), log_axis((TOP, BOTTOM), &ys))
@@ -114,7 +114,7 @@ pub fn svg(atlas: &Atlas) -> String {
     }
     let _ = write!(
         s,
-        "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">median frame time (ms, log)</text>\
+        "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">mean frame time (ms, log)</text>\
          <text x=\"18\" y=\"{:.1}\" transform=\"rotate(-90 18 {:.1})\" text-anchor=\"middle\">mean RMS error (% of page width, log)</text>",
         0.5 * (LEFT + RIGHT),
         BOTTOM + 40.0,

@@ -32,11 +32,13 @@ fn line(row: &Row) -> String {
         (None, false) => "bad",
     };
     format!(
-        "| {}{} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+        "| {}{} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
         row.label,
         if row.pareto { " **(P)**" } else { "" },
+        ms(c.map(|c| c.frame_ms_mean)),
         ms(c.map(|c| c.frame_ms_median)),
         ms(c.map(|c| c.frame_ms_p99)),
+        c.map_or_else(|| "-".into(), |c| format!("{:.1}", c.allocations_per_step)),
         percent(e.map(|e| e.rms_mean)),
         percent(e.map(|e| e.rms_worst)),
         percent(e.map(|e| e.max_worst)),
@@ -62,7 +64,7 @@ pub fn markdown(atlas: &Atlas) -> String {
     let _ = writeln!(out, "# Accuracy atlas: {}\n", atlas.scene);
     let _ = writeln!(
         out,
-        "{} frames (1/60 s each), {} material points a frame. Errors are against the reference, as % of the page width ({}). Costs are the compute time of a 1/60 s frame (median, p99), measured two variants at a time on two cores.\n",
+        "{} frames (1/60 s each), {} material points a frame. Errors are against the reference, as % of the page width ({}). Costs are the compute time of a 1/60 s frame (mean, median, p99) and heap allocations per step, measured two variants at a time on two cores.\n",
         atlas.frames, atlas.samples, atlas.page_width
     );
     let knobs = |k: &alloc::collections::BTreeMap<String, toml::Value>| {
@@ -73,9 +75,9 @@ pub fn markdown(atlas: &Atlas) -> String {
     };
     let _ = writeln!(
         out,
-        "**Reference:** the DOG book, {} ({} ms a frame, median).",
+        "**Reference:** the DOG book, {} ({} ms a frame, mean).",
         knobs(&p.reference),
-        ms(Some(p.costs.frame_ms_median))
+        ms(Some(p.costs.frame_ms_mean))
     );
     match p.refinement {
         Some(e) => {
@@ -102,13 +104,13 @@ pub fn markdown(atlas: &Atlas) -> String {
             );
         }
     }
-    out.push_str("| variant | frame ms median | p99 | RMS err mean % | RMS err worst % | max err worst % | tip err RMS % | stretch max % | stretch RMS mean % | DOG residual | penetration | pages L/R/held | run |\n");
-    out.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    out.push_str("| variant | frame ms mean | median | p99 | allocs/step | RMS err mean % | RMS err worst % | max err worst % | tip err RMS % | stretch max % | stretch RMS mean % | DOG residual | penetration | pages L/R/held | run |\n");
+    out.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for row in &atlas.variants {
         out.push_str(&line(row));
         out.push('\n');
     }
-    out.push_str("\n(P): on the Pareto front of error against median frame time.\n");
+    out.push_str("\n(P): on the Pareto front of error against mean frame time.\n");
     if let Some(c) = &atlas.convergence {
         let grids: Vec<String> = c.grids.iter().map(|[a, b]| format!("{a}x{b}")).collect();
         let moves: Vec<String> = c
