@@ -10,8 +10,10 @@
 //! (`atlas.json` records both); otherwise the atlas says so and exits with status 3.
 //!
 //! Each variant's cost is the mean, median and 99th percentile of its frames' compute time,
-//! and its allocations per step. Variants are independent and run in parallel (rayon, one
-//! variant per core): timings are taken while the other core runs another variant.
+//! its allocations per step and, where valgrind is installed, the mean instructions of its
+//! frames counted by callgrind ([`instructions`]): figures that repeat. Variants are
+//! independent and run in parallel (rayon, one variant per core): timings are taken while
+//! the other core runs another variant.
 //!
 //! Outputs in `--out` (default `out/atlas/<scene>/`): `atlas.json` (every variant, its
 //! knobs, costs and errors), `atlas.md` (the same as a table), `atlas.svg` (error against
@@ -20,6 +22,7 @@
 //! `budget-<MS>ms.toml`, that `folio run` runs.
 
 mod errors;
+pub mod instructions;
 mod plot;
 mod table;
 mod trace;
@@ -58,6 +61,9 @@ pub struct Costs {
     pub frame_ms_p99: f64,
     /// Heap allocations per model step.
     pub allocations_per_step: f64,
+    /// Mean instructions of a frame's steps, counted by callgrind ([`instructions`]):
+    /// `None` where valgrind is not installed (and for the reference, too slow to count).
+    pub instructions_per_frame: Option<f64>,
 }
 
 /// One measured variant (`atlas.json`'s `variants`).
@@ -280,12 +286,12 @@ pub fn convergence(base: &Scene, text: &str, grids: &[[i64; 2]]) -> Result<Conve
 /// The costs of a run.
 fn costs(run: &Trace) -> Costs {
     let s = &run.report.summary;
-    let frames = run.report.frames.len().max(1) as f64;
     Costs {
-        frame_ms_mean: run.report.frames.iter().map(|f| f.step_ms).sum::<f64>() / frames,
+        frame_ms_mean: s.step_ms_mean,
         frame_ms_median: s.step_ms_median,
         frame_ms_p99: s.step_ms_p99,
         allocations_per_step: s.allocations_per_step,
+        instructions_per_frame: None,
     }
 }
 
@@ -407,19 +413,27 @@ pub fn command(target: &str, budget_ms: Option<f64>, out: Option<PathBuf>) -> u8
             }
         }
     }
+    let mut status = exit::GOOD;
+    if instructions::available() {
+        if let Err(e) = count_instructions(&mut atlas, &scene, &text) {
+            eprintln!("{target}: {e}");
+            status = exit::BAD_RUN;
+        }
+    } else {
+        eprintln!("valgrind is not installed: the atlas has no instruction counts");
+    }
     if let Err(e) = write(&atlas, &out) {
         eprintln!("{}: {e}", out.display());
         return exit::OUTPUT;
     }
     print!("{}", table::markdown(&atlas));
-    let mut status = exit::GOOD;
     if let Some(budget) = budget_ms {
         match pick(&atlas, budget) {
             Some(i) => {
                 let v = &declared[i];
-                let name = format!("{}-{}ms", scene.name, budget_label(budget));
+                let name = format!("{}-{budget}ms", scene.name);
                 let table: toml::Table = toml::from_str(&text).unwrap_or_default();
-                let file = out.join(format!("budget-{}ms.toml", budget_label(budget)));
+                let file = out.join(format!("budget-{budget}ms.toml"));
                 let body = format!(
                     "# Picked by `folio atlas {target} --budget {budget}`: {} (p99 {:.3} ms a frame, mean RMS error {:.2} % of the page width).\n{}",
                     v.label,
@@ -464,9 +478,82 @@ pub fn command(target: &str, budget_ms: Option<f64>, out: Option<PathBuf>) -> u8
     status
 }
 
-/// `budget` for a file name (`2.5` → `2.5`, `4` → `4`).
-fn budget_label(budget: f64) -> String {
-    format!("{budget}")
+/// Counts the instructions of every variant that ran ([`instructions`]), two at a time,
+/// the scene files and callgrind outputs in a scratch folder removed afterwards.
+///
+/// # Errors
+/// The first variant that could not be counted (the others keep their counts).
+fn count_instructions(atlas: &mut Atlas, base: &Scene, text: &str) -> Result<(), String> {
+    let folio = std::env::current_exe().map_err(|e| format!("the folio binary: {e}"))?;
+    let table: toml::Table = toml::from_str(text).map_err(|e| e.to_string())?;
+    let dir = std::env::temp_dir().join(format!("folio-atlas-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let declared = variants::declared(base.model.get_ref().name());
+    let frames = atlas.frames.max(1) as f64;
+    let progress = Progress::start(&format!("atlas {}: callgrind", base.name));
+    let done = AtomicU32::new(0);
+    let total = atlas.variants.len() as u32;
+    let counts: Vec<Option<Result<u64, String>>> = atlas
+        .variants
+        .par_iter()
+        .with_max_len(1)
+        .map(|row| {
+            let v = declared.iter().find(|v| v.label == row.label)?;
+            row.costs?;
+            let name = format!("{}-{}", base.name, variants::slug(&v.label));
+            let file = dir.join(format!("{name}.toml"));
+            let counted = std::fs::write(&file, variants::scene_text(&table, v, &name))
+                .map_err(|e| format!("{}: {e}", file.display()))
+                .and_then(|()| instructions::count(&folio, &file, &dir));
+            progress.set(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+            Some(counted.map_err(|e| format!("{}: {e}", row.label)))
+        })
+        .collect();
+    progress.finish();
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut first_error = None;
+    for (row, count) in atlas.variants.iter_mut().zip(counts) {
+        match (count, row.costs.as_mut()) {
+            (Some(Ok(n)), Some(c)) => c.instructions_per_frame = Some(n as f64 / frames),
+            (Some(Err(e)), _) => {
+                first_error.get_or_insert(e);
+            }
+            _ => {}
+        }
+    }
+    first_error.map_or(Ok(()), Err)
+}
+
+/// `folio trace SCENE_OR_NAME`: runs the scene's frames with no outputs and prints one line
+/// (what [`instructions::count`] runs under callgrind). The exit status is the run's: 0,
+/// [`exit::BAD_RUN`] for a bad or failed run, [`exit::BAD_SCENE`] for a scene that does not
+/// check.
+pub fn trace_command(target: &str) -> u8 {
+    let scene = match crate::load_scene(target) {
+        Ok((s, _)) => s,
+        Err(e) => {
+            eprintln!("{e}");
+            return exit::BAD_SCENE;
+        }
+    };
+    match trace::trace(&scene, |_| {}) {
+        Ok(run) => {
+            let s = &run.report.summary;
+            let good = run.report.good();
+            println!(
+                "{}: {} frames, {} steps, {}",
+                scene.name,
+                run.frames.len(),
+                s.steps_total,
+                if good { "good" } else { "bad run" }
+            );
+            if good { exit::GOOD } else { exit::BAD_RUN }
+        }
+        Err(e) => {
+            eprintln!("{target}: {e}");
+            exit::BAD_RUN
+        }
+    }
 }
 
 /// Writes `atlas.json`, `atlas.md` and `atlas.svg` into `out`.

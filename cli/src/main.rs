@@ -6,6 +6,8 @@
 //! folio list                      the built-in scenes
 //! folio check SCENE...            check scene files without running them
 //! folio atlas SCENE_OR_NAME [--budget MS] [--out DIR]   what accuracy costs in time
+//! folio trace SCENE_OR_NAME       run a scene's frames with no outputs (what the atlas
+//!                                 counts instructions of, under callgrind)
 //! ```
 //!
 //! A run writes `report.json` into `--out` (default `out/<scene>/`; a scene's name is one
@@ -44,7 +46,7 @@ use run::Report;
 #[global_allocator]
 static ALLOCATOR: folio_tests::counting::Counting = folio_tests::counting::Counting;
 
-const USAGE: &str = "usage: folio [run SCENE_OR_NAME [--out DIR] | list | check SCENE... | atlas SCENE_OR_NAME [--budget MS] [--out DIR]]";
+const USAGE: &str = "usage: folio [run SCENE_OR_NAME [--out DIR] | list | check SCENE... | atlas SCENE_OR_NAME [--budget MS] [--out DIR] | trace SCENE_OR_NAME]";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -70,6 +72,7 @@ fn main() -> ExitCode {
                 exit::USAGE
             }
         },
+        ["trace", target] => atlas::trace_command(target),
         ["help" | "--help" | "-h"] => {
             println!("{USAGE}\n\n{}", exit::HELP);
             exit::GOOD

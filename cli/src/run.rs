@@ -137,6 +137,9 @@ impl FrameRecord {
 pub struct Summary {
     /// Frames run.
     pub frames: u32,
+    /// Mean compute time of a frame, all its steps (milliseconds): the run's compute time
+    /// over its frames.
+    pub step_ms_mean: f64,
     /// Median compute time of a frame, all its steps (milliseconds).
     pub step_ms_median: f64,
     /// 99th-percentile compute time of a frame, all its steps (milliseconds).
@@ -401,6 +404,32 @@ impl FrameWork {
     }
 }
 
+/// The name of the function that steps a frame: `folio atlas` counts the instructions of a
+/// run inside it only (callgrind's `--toggle-collect`, [`crate::atlas::instructions`]), so
+/// its counts hold a frame's steps and nothing of the run's setup, sampling or outputs.
+pub(crate) const FRAME_FUNCTION: &str = "advance_frame";
+
+/// Takes the `wanted` steps of one frame with `step`, up to the first one that has not
+/// `advanced` (the model keeps its state); returns the last step's result (`none` without
+/// a step) and the steps taken. Never inlined: see [`FRAME_FUNCTION`].
+#[inline(never)]
+fn advance_frame<S>(
+    wanted: u32,
+    none: S,
+    mut step: impl FnMut() -> S,
+    advanced: impl Fn(&S) -> bool,
+) -> (S, u32) {
+    let (mut last, mut steps) = (none, 0);
+    while steps < wanted {
+        last = step();
+        steps += 1;
+        if !advanced(&last) {
+            break;
+        }
+    }
+    (last, steps)
+}
+
 /// Runs a page model in precision `T` through touch input `(script, seed)`.
 fn run_touch<T: Real>(
     scene: &Scene,
@@ -418,24 +447,20 @@ fn run_touch<T: Real>(
         let inputs: Vec<String> = touch_problem(scene, script.at(frame), frame, page.model_mut())
             .into_iter()
             .collect();
-        let (wanted, mut steps) = (frame_steps(frame, h), 0);
         let mut work = FrameWork::default();
         let meter = Meter::start();
-        let mut step = Err(PageError::InvalidInput { what: "no step" });
-        while steps < wanted {
-            step = page.model_mut().step();
-            steps += 1;
-            if let Page::Dog(d) = &page {
-                work.add(d.last_report());
-            }
-            // A failed step ends the frame: the model kept its state.
-            if step
-                .as_ref()
-                .map_or(true, |s| s.status == PageStatus::Stalled)
-            {
-                break;
-            }
-        }
+        let (step, steps) = advance_frame(
+            frame_steps(frame, h),
+            Err(PageError::InvalidInput { what: "no step" }),
+            || {
+                let step = page.model_mut().step();
+                if let Page::Dog(d) = &page {
+                    work.add(d.last_report());
+                }
+                step
+            },
+            |s| s.as_ref().is_ok_and(|s| s.status != PageStatus::Stalled),
+        );
         let (step_ms, allocations) = meter.stop();
         let mut record = match &step {
             Ok(step) => {
@@ -519,22 +544,21 @@ fn run_book<T: Real>(
             let outcome = book.apply(script.camera, script.forward, e.action);
             inputs.extend(input_problem(frame, outcome));
         }
-        let (wanted, mut steps) = (frame_steps(frame, h), 0);
         let mut work = FrameWork::default();
         let meter = Meter::start();
-        let mut step = Err(BookError::InvalidSetting {
-            field: "no step",
-            requirement: "taken",
-        });
-        while steps < wanted {
-            step = book.step();
-            steps += 1;
-            work.add(step.as_ref().ok());
-            // A failed step ends the frame: the book kept its state.
-            if step.as_ref().map_or(true, |r| !r.solver.status.advanced()) {
-                break;
-            }
-        }
+        let (step, steps) = advance_frame(
+            frame_steps(frame, h),
+            Err(BookError::InvalidSetting {
+                field: "no step",
+                requirement: "taken",
+            }),
+            || {
+                let step = book.step();
+                work.add(step.as_ref().ok());
+                step
+            },
+            |s| s.as_ref().is_ok_and(|r| r.solver.status.advanced()),
+        );
         let (step_ms, allocations) = meter.stop();
         let record = match &step {
             Ok(_) => FrameRecord::new(frame, steps, step_ms, String::new(), false),
@@ -669,6 +693,7 @@ pub(crate) fn summarize(
     }
     Summary {
         frames: records.len() as u32,
+        step_ms_mean: steps.iter().sum::<f64>() / steps.len().max(1) as f64,
         step_ms_median: quantile(&steps, 0.5),
         step_ms_p99: quantile(&steps, 0.99),
         steps_total: records.iter().map(|r| u64::from(r.steps)).sum(),

@@ -17,9 +17,9 @@ use crate::scene::Scene;
 /// `solver.tolerance` (Newton checks the eq. 3 residual before each iteration and stops at
 /// the first iterate within it, else after `newton_iterations`); `constraint_hessian`,
 /// `collision_rounds` and `max_corrections` set their fields, and `projection = false` sets
-/// `max_corrections = 0`. With more than one Newton iteration the linear solves refine to
-/// the solver's default relative residual $\varepsilon^{3/4}$ instead of the book's
-/// $\sqrt\varepsilon$ (meant for one iteration, `folio_book::BookSettings::solver`).
+/// `max_corrections = 0`. `newton_iterations` goes through
+/// `folio_book::BookSettings::set_newton_iterations`, which also sets the refinement the
+/// linear solves need for that many iterations.
 ///
 /// Frames are in time ([`crate::clock`]): at a time step $h$ a frame takes
 /// $k = \mathrm{round}(\Delta t_{\mathrm{frame}} / h) \ge 1$ steps, so the three counts the
@@ -48,10 +48,9 @@ pub fn book_settings<T: Real>(scene: &Scene) -> BookSettings<T> {
     if let Some(solver) = &scene.solver {
         let v = solver.get_ref();
         set_real(&mut s.solver.time_step, v.time_step.as_ref());
-        set(
-            &mut s.solver.newton_iterations,
-            v.newton_iterations.as_ref(),
-        );
+        if let Some(n) = &v.newton_iterations {
+            s.set_newton_iterations(*n.get_ref());
+        }
         set_real(&mut s.solver.tolerance, v.newton_tolerance.as_ref());
         set(
             &mut s.solver.constraint_hessian,
@@ -65,13 +64,6 @@ pub fn book_settings<T: Real>(scene: &Scene) -> BookSettings<T> {
         if let Some(g) = &v.grid {
             [s.quads_across, s.quads_along] = g.get_ref().map(|q| q as usize);
         }
-    }
-    if s.solver.newton_iterations > 1 {
-        // The book's linear solves stop at a relative residual of sqrt(eps), enough for its
-        // one Newton iteration; more iterations need the solver's eps^(3/4) to converge
-        // (at sqrt(eps) a 24 x 33 page never reached a KKT residual of 1e-10 in 20).
-        s.solver.refinement_tolerance =
-            folio_solvers::settings::Settings::<T>::default().refinement_tolerance;
     }
     let k = crate::clock::steps_per_frame(s.solver.time_step.to_f64());
     s.merge_frames = s.merge_frames.saturating_mul(k);

@@ -52,6 +52,27 @@ fn every_dog_key_reaches_the_book_settings() {
     assert_eq!(s.max_corrections, 7);
 }
 
+/// More than one Newton iteration refines the linear solves to eps^(3/4); one keeps the
+/// book's sqrt(eps).
+#[test]
+fn newton_iterations_bring_the_refinement_they_need() {
+    let tolerance = |line: &str| {
+        let (text, _) = with_solver("page-turn", line);
+        book_settings::<f64>(&Scene::parse(&text).expect("checks"))
+            .solver
+            .refinement_tolerance
+    };
+    let (many, one) = (
+        tolerance("newton_iterations = 4"),
+        tolerance("newton_iterations = 1"),
+    );
+    assert!(
+        (many / f64::EPSILON.powf(0.75) - 1.0).abs() < 1e-12,
+        "{many}"
+    );
+    assert!((one / f64::EPSILON.sqrt() - 1.0).abs() < 1e-12, "{one}");
+}
+
 #[test]
 fn step_counts_of_the_book_keep_their_time() {
     let (text, _) = with_solver("page-turn", "time_step = 0.004166666666666667");

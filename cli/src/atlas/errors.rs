@@ -47,8 +47,8 @@ pub fn errors(a: &Trace, b: &Trace, width: f64) -> Errors {
     let n = a.frames.len().max(b.frames.len());
     for f in 0..n {
         let (x, r) = match (
-            a.frames.get(f).cloned().flatten(),
-            b.frames.get(f).cloned().flatten(),
+            a.frames.get(f).and_then(Option::as_ref),
+            b.frames.get(f).and_then(Option::as_ref),
         ) {
             (Some(x), Some(r)) if x.len() == r.len() => (x, r),
             (None, None) => continue,

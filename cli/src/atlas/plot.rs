@@ -47,6 +47,81 @@ fn marker(model: &str, x: f64, y: f64, pareto: bool) -> String {
     }
 }
 
+/// An axis-aligned box on the plot (pixels).
+#[derive(Clone, Copy, Debug)]
+struct Rect {
+    x0: f64,
+    y0: f64,
+    x1: f64,
+    y1: f64,
+}
+
+impl Rect {
+    /// The square of half-side `r` around `(x, y)`.
+    fn around(x: f64, y: f64, r: f64) -> Self {
+        Self {
+            x0: x - r,
+            y0: y - r,
+            x1: x + r,
+            y1: y + r,
+        }
+    }
+
+    fn overlaps(&self, o: &Self) -> bool {
+        self.x0 < o.x1 && o.x0 < self.x1 && self.y0 < o.y1 && o.y0 < self.y1
+    }
+}
+
+/// The width of a 10 px label (pixels): about 0.56 em a character.
+fn label_width(label: &str) -> f64 {
+    5.6 * label.chars().count() as f64
+}
+
+/// Where the label of width `width` of the marker at `(x, y)` goes: the first of a few
+/// places around the marker (right above, right below, left above, left below, then further
+/// up and down) whose box meets no other label and no marker, else the first place. Returns
+/// the text's anchor point and `text-anchor`, and adds its box to `placed`.
+fn place_label(
+    x: f64,
+    y: f64,
+    width: f64,
+    markers: &[Rect],
+    placed: &mut Vec<Rect>,
+) -> (f64, f64, &'static str) {
+    const LABEL_HEIGHT: f64 = 10.0;
+    let candidates = [
+        (8.0, -6.0),
+        (8.0, 14.0),
+        (-8.0, -6.0),
+        (-8.0, 14.0),
+        (8.0, -18.0),
+        (8.0, 26.0),
+        (-8.0, -18.0),
+        (-8.0, 26.0),
+    ];
+    let boxed = |(dx, dy): (f64, f64)| {
+        let (x0, x1) = if dx > 0.0 {
+            (x + dx, x + dx + width)
+        } else {
+            (x + dx - width, x + dx)
+        };
+        Rect {
+            x0,
+            y0: y + dy - LABEL_HEIGHT,
+            x1,
+            y1: y + dy + 2.0,
+        }
+    };
+    let free = |b: &Rect| !placed.iter().chain(markers).any(|o| b.overlaps(o));
+    let (dx, dy) = candidates
+        .iter()
+        .copied()
+        .find(|&c| free(&boxed(c)))
+        .unwrap_or(candidates[0]);
+    placed.push(boxed((dx, dy)));
+    (x + dx, y + dy, if dx > 0.0 { "start" } else { "end" })
+}
+
 /// Escapes `s` for SVG text.
 fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
@@ -138,17 +213,22 @@ pub fn svg(atlas: &Atlas) -> String {
             "<path d=\"{path}\" fill=\"none\" stroke=\"#b8431f\" stroke-width=\"1.5\" stroke-dasharray=\"5,3\"/>"
         );
     }
-    for &(i, t, e) in &points {
+    let drawn: Vec<(usize, f64, f64)> = points
+        .iter()
+        .filter_map(|&(i, t, e)| Some((i, x_axis.y(t)?, y_axis.y(e)?)))
+        .collect();
+    let markers: Vec<Rect> = drawn
+        .iter()
+        .map(|&(_, x, y)| Rect::around(x, y, 6.0))
+        .collect();
+    let mut labels: Vec<Rect> = Vec::new();
+    for &(i, x, y) in &drawn {
         let row = &atlas.variants[i];
-        let (Some(x), Some(y)) = (x_axis.y(t), y_axis.y(e)) else {
-            continue;
-        };
         s.push_str(&marker(&row.model, x, y, row.pareto));
+        let (lx, ly, anchor) = place_label(x, y, label_width(&row.label), &markers, &mut labels);
         let _ = write!(
             s,
-            "<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"10\">{}</text>",
-            x + 8.0,
-            y - 6.0,
+            "<text x=\"{lx:.1}\" y=\"{ly:.1}\" font-size=\"10\" text-anchor=\"{anchor}\">{}</text>",
             escape(&row.label)
         );
     }
@@ -188,4 +268,40 @@ pub fn svg(atlas: &Atlas) -> String {
     }
     s.push_str("</svg>");
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Markers in a cluster get labels that overlap neither each other nor a marker.
+    #[test]
+    fn labels_of_a_cluster_do_not_overlap() {
+        let points = [
+            (300.0, 200.0),
+            (304.0, 202.0),
+            (296.0, 206.0),
+            (302.0, 194.0),
+        ];
+        let markers: Vec<Rect> = points
+            .iter()
+            .map(|&(x, y)| Rect::around(x, y, 6.0))
+            .collect();
+        let mut placed = Vec::new();
+        for &(x, y) in &points {
+            place_label(
+                x,
+                y,
+                label_width("dog newton 2, hessian"),
+                &markers,
+                &mut placed,
+            );
+        }
+        for (i, a) in placed.iter().enumerate() {
+            for b in &placed[i + 1..] {
+                assert!(!a.overlaps(b), "{a:?} {b:?}");
+            }
+            assert!(!markers.iter().any(|m| a.overlaps(m)), "{a:?}");
+        }
+    }
 }

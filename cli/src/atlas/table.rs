@@ -19,6 +19,11 @@ fn ms(v: Option<f64>) -> String {
     v.map_or_else(|| "-".into(), |v| format!("{v:.3}"))
 }
 
+/// `v` in millions with two decimals, or `-`.
+fn mega(v: Option<f64>) -> String {
+    v.map_or_else(|| "-".into(), |v| format!("{:.2}", v / 1e6))
+}
+
 /// One table line of `row`.
 fn line(row: &Row) -> String {
     let e = row.errors;
@@ -32,13 +37,14 @@ fn line(row: &Row) -> String {
         (None, false) => "bad",
     };
     format!(
-        "| {}{} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+        "| {}{} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
         row.label,
         if row.pareto { " **(P)**" } else { "" },
         ms(c.map(|c| c.frame_ms_mean)),
         ms(c.map(|c| c.frame_ms_median)),
         ms(c.map(|c| c.frame_ms_p99)),
         c.map_or_else(|| "-".into(), |c| format!("{:.1}", c.allocations_per_step)),
+        mega(c.and_then(|c| c.instructions_per_frame)),
         percent(e.map(|e| e.rms_mean)),
         percent(e.map(|e| e.rms_worst)),
         percent(e.map(|e| e.max_worst)),
@@ -104,8 +110,8 @@ pub fn markdown(atlas: &Atlas) -> String {
             );
         }
     }
-    out.push_str("| variant | frame ms mean | median | p99 | allocs/step | RMS err mean % | RMS err worst % | max err worst % | tip err RMS % | stretch max % | stretch RMS mean % | DOG residual | penetration | pages L/R/held | run |\n");
-    out.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    out.push_str("| variant | frame ms mean | median | p99 | allocs/step | M instr/frame | RMS err mean % | RMS err worst % | max err worst % | tip err RMS % | stretch max % | stretch RMS mean % | DOG residual | penetration | pages L/R/held | run |\n");
+    out.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for row in &atlas.variants {
         out.push_str(&line(row));
         out.push('\n');

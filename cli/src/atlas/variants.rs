@@ -296,8 +296,9 @@ pub fn on_grid(model: &str, grid: [i64; 2]) -> Variant {
 }
 
 /// The scene file of `variant` on the scene `base` (a parsed scene file): `name` becomes
-/// `name`, `model` the variant's, its `[solver]` keys are set; a variant of another model
-/// than the scene's drops `[book]`, `[weights]`, `[solver]` and `effects` first.
+/// `name`, `model` the variant's, `description` says which variant of the base it is, its
+/// `[solver]` keys are set; a variant of another model than the scene's drops `[book]`,
+/// `[weights]`, `[solver]` and `effects` first.
 #[must_use]
 pub fn scene_text(base: &Table, variant: &Variant, name: &str) -> String {
     let mut table = base.clone();
@@ -309,6 +310,12 @@ pub fn scene_text(base: &Table, variant: &Variant, name: &str) -> String {
     }
     table.insert("name".into(), name.into());
     table.insert("model".into(), variant.model.as_str().into());
+    // The base's description names the base's model: say which variant this is.
+    let description = match table.get("description").and_then(Value::as_str) {
+        Some(d) => format!("atlas variant {} of: {d}", variant.label),
+        None => format!("atlas variant {}", variant.label),
+    };
+    table.insert("description".into(), description.into());
     if !variant.solver.is_empty() {
         let solver = table
             .entry("solver")
