@@ -197,3 +197,20 @@ fn every_variant_of_every_built_in_page_scene_checks() {
         }
     }
 }
+
+/// Every model's declared variants have distinct labels (the instruction counts find a
+/// variant by its label) and include the DOG page at its defaults, so a page model's scene
+/// compares the two at equal knobs.
+#[test]
+fn declared_variants_are_distinct_and_include_the_default_dog_page() {
+    for model in ["dog", "cone", "mass-spring", "xpbd"] {
+        let declared = variants::declared(model);
+        let mut labels: Vec<&str> = declared.iter().map(|v| v.label.as_str()).collect();
+        assert_eq!(labels[0], format!("{model} default"), "{labels:?}");
+        assert!(labels.contains(&"dog default"), "{model}: {labels:?}");
+        labels.sort_unstable();
+        let n = labels.len();
+        labels.dedup();
+        assert_eq!(labels.len(), n, "{model}: a label twice");
+    }
+}
