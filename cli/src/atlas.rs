@@ -150,9 +150,13 @@ fn knobs(variant: &Variant) -> BTreeMap<String, toml::Value> {
 /// The scene of `variant` on `base` (its text `table`), named after the base and the
 /// variant, parsed and checked as `folio run` would.
 fn variant_scene(base: &Scene, table: &toml::Table, variant: &Variant) -> Result<Scene, String> {
-    let name = format!("{}-{}", base.name, variants::slug(&variant.label));
-    let text = variants::scene_text(table, variant, &name);
+    let text = variants::scene_text(table, variant, &variant_name(base, variant));
     Scene::parse(&text).map_err(|e| format!("{e}\n{text}"))
+}
+
+/// The scene name of `variant` on `base`: the base's name and the variant's slug.
+fn variant_name(base: &Scene, variant: &Variant) -> String {
+    format!("{}-{}", base.name, variants::slug(&variant.label))
 }
 
 /// Measures `variants` of the scene `base` (its file text `text`) against `reference`,
@@ -500,7 +504,7 @@ fn count_instructions(atlas: &mut Atlas, base: &Scene, text: &str) -> Result<(),
         .map(|row| {
             let v = declared.iter().find(|v| v.label == row.label)?;
             row.costs?;
-            let name = format!("{}-{}", base.name, variants::slug(&v.label));
+            let name = variant_name(base, v);
             let file = dir.join(format!("{name}.toml"));
             let counted = std::fs::write(&file, variants::scene_text(&table, v, &name))
                 .map_err(|e| format!("{}: {e}", file.display()))
@@ -536,14 +540,15 @@ pub fn trace_command(target: &str) -> u8 {
             return exit::BAD_SCENE;
         }
     };
-    match trace::trace(&scene, |_| {}) {
-        Ok(run) => {
-            let s = &run.report.summary;
-            let good = run.report.good();
+    // No observer: nothing is sampled or drawn around the steps.
+    match crate::run::run(&scene, |_, _| {}, |_, _, _| {}) {
+        Ok(report) => {
+            let s = &report.summary;
+            let good = report.good();
             println!(
                 "{}: {} frames, {} steps, {}",
                 scene.name,
-                run.frames.len(),
+                s.frames,
                 s.steps_total,
                 if good { "good" } else { "bad run" }
             );
