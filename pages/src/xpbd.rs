@@ -49,15 +49,17 @@
 //!
 //! **Calibration** (`tests/tests/elastica_xpbd.rs`): the page clamped at the spine
 //! ([`Spine::Clamp`]) settles to the cantilever elastica under its own weight with the
-//! default $D$, at loads $\rho g W^3/D$ = 0.1, 1, 10: tip +2.60 %, +2.59 %, +2.30 % at the
-//! default $8 \times 11$ quads and 24 substeps (+1.6 % of it is the grid's, the five-point
+//! default $D$, at loads $\rho g W^3/D$ = 0.1, 1, 10: tip +2.58 %, +2.58 %, +2.29 % at the
+//! default $8 \times 11$ quads and 29 substeps (+1.6 % of it is the grid's, the five-point
 //! beam's own error at 8 cells; the rest is the small steps' bias). At $16 \times 22$ quads
-//! the same 24 substeps give +21.7 %, +21.1 %, +6.9 %: one sweep per substep leaves a bias
-//! of order $(h\,\omega_{max})^2$, $\omega_{max}$ the stiffest bending frequency, which grows
-//! as the inverse square of the spacing, so the finer page is a softer page unless its
-//! substeps grow fourfold (96: +1.59 %, +1.57 %, +0.89 %). The default of 24 substeps is the
-//! fewest of the ones measured (24, 96) that keeps the default grid within 3 %. Two findings
-//! shaped the constraints:
+//! the same 29 substeps give +21.3 %, +20.7 %, +6.8 %: one sweep per substep leaves a bias
+//! of order $(h\,\omega_{max})^2$, $\omega_{max} \propto \sqrt D$ the stiffest bending
+//! frequency, which grows as the inverse square of the spacing, so the finer page is a
+//! softer page unless its substeps grow fourfold (116: +1.57 %, +1.55 %, +0.88 %). The
+//! default substeps hold $h\,\omega_{max}$ where 24 substeps held it for $D = 240$ (the
+//! page before issue 21's recalibration): $24\sqrt{344/240} = 28.7$. At $D = 344$, 24
+//! substeps gave +3.06 % at load 0.1 (outside 3 %), 29 the figures above, 32 +2.40 %. Two
+//! findings shaped the constraints:
 //! - **Bending: the Hessian form, not the Laplacian.** With Bergou's cotangent Laplacian
 //!   alone, $\frac D2\sum A_v\lVert\Delta_h x_v\rVert^2$ (mean curvature squared), a
 //!   saddle costs no bending, and the distance constraints resist it only to second order
@@ -70,7 +72,7 @@
 //!
 //! **The shared page turn** (`tests/tests/page_models.rs`, render grid $24 \times 34$
 //! quads): 96 % of the page ends left of the spine, the render grid's max stretch per frame
-//! averages 1.25 % (worst 6.1 %, f32 alike), the finger gap is 0. The worst stretch is in
+//! averages 1.21 % (worst 5.9 %, f32 alike), the finger gap is 0. The worst stretch is in
 //! the cells next to the two gripped particles, folded sharply while the finger lifts the
 //! page. A flick is not bounded: one sweep per substep cannot follow gripped particles that
 //! jump within a frame (a link at 33 % on a small coarse page flicked in one frame,

@@ -324,8 +324,8 @@ fn every_model_meshes_with_its_back_facing_away() {
 /// The XPBD page on the shared drag, in both precisions: never stalled, the finger exactly
 /// on the held point (the gripped cell moves rigidly), the page turned, and its particle
 /// links (edges and diagonals) and render grid within bounds on every frame. Measured
-/// (f64; f32 the same to 3 digits): links worst 6.1 %, render grid worst 6.1 % and mean
-/// 1.25 % per frame, 96 % of the page left of the spine. The worst links are the cells
+/// (f64; f32 the same to 3 digits): links worst 6.1 %, render grid worst 5.9 % and mean
+/// 1.21 % per frame, 96 % of the page left of the spine. The worst links are the cells
 /// next to the two gripped fore-edge particles, folded sharply there while the finger lifts
 /// the page (frames 22-60: one Gauss-Seidel sweep per substep leaves the bending and the
 /// distance constraints of the fold 3-6 % apart; 48 substeps 4.3 %, 96 substeps 3.2 %, four
@@ -372,6 +372,25 @@ fn the_xpbd_page_turns_with_bounded_stretch() {
         let gap = worst(p.gaps.iter().flatten().copied());
         assert!(gap <= 1e-3, "{name}: finger gap {gap}");
     }
+}
+
+/// The XPBD page's defaults are the book's default page: the same size, the same page mass
+/// and the bending stiffness the book's page bending weight stands for
+/// ($D = 2\,w_{\mathrm{bend3D}}$, `folio_book::quadrature::bending_stiffness`), so the
+/// shared drag compares the two models on one paper.
+#[test]
+fn the_xpbd_page_is_the_book_page() {
+    let book = BookSettings::<f64>::default();
+    let xpbd = XpbdSettings::<f64>::default();
+    let d = folio_book::quadrature::bending_stiffness(book.weights.bend_page);
+    assert_eq!(xpbd.bending_stiffness, d);
+    assert_eq!([xpbd.width, xpbd.height], [WIDTH, HEIGHT]);
+    let page_mass = xpbd.areal_density * xpbd.width * xpbd.height;
+    assert!((page_mass - 1.0).abs() < 1e-12, "{page_mass}");
+    assert_eq!(
+        [xpbd.quads_across, xpbd.quads_along],
+        [book.quads_across, book.quads_along]
+    );
 }
 
 /// Bad XPBD settings are refused with a typed error naming the field, never a panic.

@@ -240,6 +240,8 @@ pub fn declared(model: &str) -> Vec<Variant> {
         }),
     ]);
     if model != "dog" {
+        let xpbd_fine_substeps =
+            4 * i64::from(folio_pages::xpbd::XpbdSettings::<f64>::default().substeps);
         let others = [
             none.variant("cone"),
             none.variant("mass-spring"),
@@ -257,14 +259,17 @@ pub fn declared(model: &str) -> Vec<Variant> {
             }
             .variant("mass-spring"),
             none.variant("xpbd"),
+            // Four times the substeps: the default's bias (h omega_max)^2 a sixteenth, and
+            // on a grid twice as fine the default's h omega_max (the stiffest bending mode's
+            // frequency grows as the inverse square of the spacing).
             Knobs {
-                substeps: Some(96),
+                substeps: Some(xpbd_fine_substeps),
                 ..none
             }
             .variant("xpbd"),
             Knobs {
                 grid: Some([16, 22]),
-                substeps: Some(96),
+                substeps: Some(xpbd_fine_substeps),
                 ..none
             }
             .variant("xpbd"),

@@ -7,11 +7,11 @@
 //! width per unit curvature, the plate's $D$), compliances in inverse stiffness.
 //!
 //! **The default page is the DOG book's page**: $W = 12$, $H = 12\sqrt2$, unit page mass
-//! ($\rho = 1/(WH)$), $g = 9.81$, and $D = 240 = 2\,w_{\mathrm{bend3D}}$, the plate stiffness
-//! the book's page bending weight $w_{\mathrm{bend3D}} = 120$ stands for when its Laplacian
-//! terms are weighted by area (issue 21's calibration, branch `units`,
-//! `book::quadrature::bending_stiffness`). Its load number is
-//! $\rho g W^3 / D = 0.347$: a nearly rigid page that sags 4 % of its width when clamped.
+//! ($\rho = 1/(WH)$), $g = 9.81$, and $D = 344 = 2\,w_{\mathrm{bend3D}}$, the plate stiffness
+//! of the book's default page bending weight $w_{\mathrm{bend3D}} = 172$ with its Laplacian
+//! terms weighted by area (`folio_book::quadrature::bending_stiffness`; the test
+//! `page_models::the_xpbd_page_is_the_book_page` holds the two together). Its load number
+//! is $\rho g W^3 / D = 0.242$: a nearly rigid page, a card for its weight.
 
 use folio_kernels::Real;
 
@@ -109,7 +109,7 @@ pub struct XpbdSettings<T: Real> {
 impl<T: Real> Default for XpbdSettings<T> {
     /// The book page (module docs) on the mass-spring page's grid, $8 \times 11$ quads
     /// ($9 \times 12$ particles), hinged at the spine, over the table, inextensible in
-    /// stretch (nearly so in shear), at $h = 1/60$ in 24 substeps of one sweep each (chosen from the
+    /// stretch (nearly so in shear), at $h = 1/60$ in 29 substeps of one sweep each (chosen from the
     /// figures in [`super`]'s module docs: the cantilever's tip within 3 % of the elastica).
     fn default() -> Self {
         let (width, height) = (12.0, 12.0 * core::f64::consts::SQRT_2);
@@ -120,12 +120,12 @@ impl<T: Real> Default for XpbdSettings<T> {
             height: T::from_f64(height),
             areal_density: T::from_f64(1.0 / (width * height)),
             gravity: T::from_f64(9.81),
-            bending_stiffness: T::from_f64(240.0),
+            bending_stiffness: T::from_f64(344.0),
             stretch_compliance: T::ZERO,
             shear_compliance: T::from_f64(1e-6),
             damping: T::from_f64(0.7125),
             time_step: T::from_f64(1.0 / 60.0),
-            substeps: 24,
+            substeps: 29,
             iterations: 1,
             spine: Spine::Hinge,
             floor: true,
