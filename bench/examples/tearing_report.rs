@@ -25,7 +25,7 @@ use core::hint::black_box;
 use std::time::Instant;
 
 use folio_bench::book::{quantile, worst};
-use folio_bench::tearing::{ASYMMETRIC, ConeInputs, Scene, TearInputs, membrane_gradients};
+use folio_bench::tearing::{ASYMMETRIC, ConeInputs, Scene, TearInputs};
 use folio_tearing::sheet::SheetEffects;
 
 /// Frames played per configuration.
@@ -83,7 +83,7 @@ impl Times {
 fn play(effects: SheetEffects, parts: bool) -> (Events, Times) {
     let mut scene = Scene::notched(effects, ASYMMETRIC);
     let (mut ev, mut tm) = (Events::default(), Times::default());
-    let mut gradients = Vec::new();
+    let (mut gradients, mut eshelby) = (Vec::new(), Vec::new());
     for frame in 0..FRAMES {
         scene.move_fingers();
         let t = Instant::now();
@@ -99,9 +99,13 @@ fn play(effects: SheetEffects, parts: bool) -> (Events, Times) {
         }
         if parts {
             let t = Instant::now();
-            membrane_gradients(&mut gradients, scene.sheet.mesh(), scene.sheet.model());
+            scene.sheet.model().triangle_loads(
+                scene.sheet.mesh().positions(),
+                &mut gradients,
+                &mut eshelby,
+            );
             tm.gradients.push(t.elapsed().as_secs_f64());
-            black_box(&gradients);
+            black_box((&gradients, &eshelby));
 
             let mut tear = TearInputs::of(&scene.sheet);
             let t = Instant::now();
@@ -272,7 +276,7 @@ fn main() {
             &a.fastest.tear_step,
         ),
         (
-            "membrane gradients the tearing step reads",
+            "membrane gradients and Eshelby tensors the tearing step reads",
             &a.fastest.gradients,
         ),
         (

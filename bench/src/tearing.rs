@@ -10,9 +10,9 @@
 
 use folio_geometry::SheetMesh;
 use folio_geometry::sheet::{ConeLayer, ConeSettings};
-use folio_kernels::{Potential, Real};
-use folio_tearing::sheet::{FrameReport, SheetEffects, SheetModel, SheetSettings, TearingSheet};
-use folio_tearing::{TearStep, Tears};
+use folio_kernels::Real;
+use folio_tearing::sheet::{FrameReport, SheetEffects, SheetSettings, TearingSheet};
+use folio_tearing::{TearStep, Tears, TriangleLoads};
 
 /// The 3D vector type of `f64`.
 pub type V3 = <f64 as Real>::Vec3;
@@ -101,17 +101,6 @@ impl Scene {
     }
 }
 
-/// The in-plane stretching gradient of every triangle at its corners (what the sheet hands
-/// the tearing step), into `out`.
-pub fn membrane_gradients(out: &mut Vec<[V3; 3]>, mesh: &SheetMesh<f64>, model: &SheetModel<f64>) {
-    let x = mesh.positions();
-    out.clear();
-    for term in model.membranes().terms() {
-        let local = term.nodes.map(|i| x[i as usize]);
-        out.push(term.kernel.gradient(&local));
-    }
-}
-
 /// Copies of everything one tearing step of a sheet reads and writes.
 #[derive(Clone, Debug)]
 pub struct TearInputs {
@@ -121,6 +110,8 @@ pub struct TearInputs {
     pub tears: Tears<f64>,
     /// The membranes' gradients at the mesh's positions.
     pub gradients: Vec<[V3; 3]>,
+    /// The membranes' Eshelby tensors at the mesh's positions.
+    pub eshelby: Vec<[f64; 3]>,
     /// The held vertices.
     pub fingers: Vec<u32>,
     /// The cone layer's junction points (none when cones are off).
@@ -131,8 +122,10 @@ impl TearInputs {
     /// The inputs of the next tearing step of `sheet`, copied.
     #[must_use]
     pub fn of(sheet: &TearingSheet<f64>) -> Self {
-        let mut gradients = Vec::new();
-        membrane_gradients(&mut gradients, sheet.mesh(), sheet.model());
+        let (mut gradients, mut eshelby) = (Vec::new(), Vec::new());
+        sheet
+            .model()
+            .triangle_loads(sheet.mesh().positions(), &mut gradients, &mut eshelby);
         let junctions = if sheet.settings().effects.cones {
             sheet.layer().junctions.clone()
         } else {
@@ -142,6 +135,7 @@ impl TearInputs {
             mesh: sheet.mesh().clone(),
             tears: sheet.tears().clone(),
             gradients,
+            eshelby,
             fingers: sheet.fingers().iter().map(|f| f.vertex).collect(),
             junctions,
         }
@@ -149,12 +143,12 @@ impl TearInputs {
 
     /// [`Tears::step`] on the copies.
     pub fn step(&mut self) -> TearStep<f64> {
-        self.tears.step(
-            &mut self.mesh,
-            &self.gradients,
-            &self.fingers,
-            &self.junctions,
-        )
+        let loads = TriangleLoads {
+            gradients: &self.gradients,
+            eshelby: &self.eshelby,
+        };
+        self.tears
+            .step(&mut self.mesh, &loads, &self.fingers, &self.junctions)
     }
 }
 

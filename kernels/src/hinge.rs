@@ -36,9 +36,24 @@
 //! rest shape under any rigid motion (and any in-plane stretch: this term measures bending
 //! only).
 //!
-//! $V$ is quadratic: $\nabla_{x_i} V = 2c K_i s$ and $\nabla^2 V = 2c\thinspace K K^T \otimes I_3$ with
-//! $c = 3/(A_a + A_b)$, constant (assemble once). Unweighted: the family weight is the bending
+//! Unweighted: the family weight is the bending
 //! stiffness. Units: $K$ dimensionless, $c$ per page unit², $V$ dimensionless.
+//!
+//! **Only bending.** The paper's $\lVert s\rVert^2$ also grows under in-plane deformations
+//! that are not affine ($s$ is then the cotangent Laplacian of the in-plane displacement, in
+//! the sheet's plane), which the membrane alone should carry. At a tear tip, whose field is
+//! singular, that in-plane part stiffens the sheet on every finer mesh: the energy a notch
+//! releases (`folio_tearing::release`) is 1.26e-7, 1.42e-7 and 1.48e-7 without it
+//! (converging), but 1.00e-7, 0.80e-7 and 0.45e-7 with it, at 16, 32 and 64 quads across. So only the component of $s$ along the hinge's
+//! normal $\hat n$ counts:
+//! $$V = c\thinspace(\hat n \cdot s)^2,\qquad c = \frac{3}{A_a + A_b},$$
+//! with $\hat n$ the two triangles' mean unit normal, set by [`Hinge::orient`] at the start
+//! of each step and held during it (so $V$ stays quadratic). For an isometric fold $s$ lies
+//! along that normal ($m_a + m_b$ bisects the two triangles' normals), so the energy is the
+//! paper's, $12\ell^2\sin^2(\theta/2)/(A_a + A_b)$; an in-plane deformation costs nothing.
+//! $\nabla_{x_i} V = 2c\thinspace K_i\thinspace(\hat n\cdot s)\thinspace\hat n$ and
+//! $\nabla^2_{x_a x_b} V = 2c\thinspace K_a K_b\thinspace \hat n \hat n^T$, constant within the
+//! step.
 //!
 //! Degenerate input: the constructor refuses non-finite patterns and degenerate, sliver or
 //! clockwise triangles (overlapping triangles: $x_3$ on the same side of the edge as $x_2$),
@@ -46,16 +61,19 @@
 //! for any finite positions up to [`Real::COORD_MAX`]; NaN input propagates.
 
 use crate::error::{KernelError, finite, rest_triangle_area2};
-use crate::real::{Real, Vec3Ops};
+use crate::real::{Mat3Ops, Real, Vec3Ops};
 use crate::term::{Blocks, NodeVecs, Potential, add_scalar_kron, zero_blocks};
 
 /// Quadratic isometric bending energy of one interior edge of a flat-rest sheet (module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Hinge<T> {
+pub struct Hinge<T: Real> {
     /// The stencil $K$ (dimensionless cotangent sums), in node order `[x0, x1, x2, x3]`.
     pub stencil: [T; 4],
     /// $c = 3/(A_a + A_b)$, per page unit².
     pub scale: T,
+    /// $\hat n$, the unit normal along which $s$ counts (module docs), set by
+    /// [`Hinge::orient`]; `None`: all of $s$ counts, the paper's $c\lVert s\rVert^2$.
+    pub normal: Option<T::Vec3>,
 }
 
 impl<T: Real> Hinge<T> {
@@ -99,7 +117,32 @@ impl<T: Real> Hinge<T> {
         if !scale.is_finite() || !stencil.iter().all(|k| k.is_finite()) {
             return Err(KernelError::NonPositiveRestArea { index: 0 });
         }
-        Ok(Self { stencil, scale })
+        Ok(Self {
+            stencil,
+            scale,
+            normal: None,
+        })
+    }
+
+    /// Sets $\hat n$ to the mean of the two triangles' unit normals at `x` (module docs), so
+    /// that only folds count from now on; keeps the old one where a triangle is degenerate
+    /// or the two normals cancel (a hinge folded flat onto itself), and the flat pattern's
+    /// $+Z$ if it had none.
+    pub fn orient(&mut self, x: &NodeVecs<T, 4>) {
+        let [x0, x1, x2, x3] = *x;
+        let unit = |v: T::Vec3| {
+            let len = crate::math::length::<T>(v);
+            (len > T::ZERO && len.is_finite()).then(|| v * (T::ONE / len))
+        };
+        let mean = match (
+            unit((x1 - x0).cross(x2 - x0)),
+            unit((x0 - x1).cross(x3 - x1)),
+        ) {
+            (Some(a), Some(b)) => unit(a + b),
+            _ => None,
+        };
+        let z = T::Vec3::new(T::ZERO, T::ZERO, T::ONE);
+        self.normal = mean.or(self.normal).or(Some(z));
     }
 
     /// $s = \sum_i K_i x_i$: zero for the flat pattern under any affine map, length
@@ -120,17 +163,33 @@ impl<T: Real> Potential<T, 4> for Hinge<T> {
 
     fn value(&self, x: &NodeVecs<T, 4>) -> T {
         let s = self.apply(x);
-        self.scale * s.dot(s)
+        match self.normal {
+            None => self.scale * s.dot(s),
+            Some(n) => self.scale * n.dot(s) * n.dot(s),
+        }
     }
 
     fn gradient(&self, x: &NodeVecs<T, 4>) -> NodeVecs<T, 4> {
-        let s = self.apply(x) * (T::TWO * self.scale);
-        self.stencil.map(|k| s * k)
+        let s = self.apply(x);
+        let g = match self.normal {
+            None => s,
+            Some(n) => n * n.dot(s),
+        } * (T::TWO * self.scale);
+        self.stencil.map(|k| g * k)
     }
 
     fn hessian(&self, _x: &NodeVecs<T, 4>) -> Blocks<T, 4> {
         let mut h = zero_blocks::<T, 4>();
-        add_scalar_kron(&mut h, &self.stencil, T::TWO * self.scale);
+        let Some(n) = self.normal else {
+            add_scalar_kron(&mut h, &self.stencil, T::TWO * self.scale);
+            return h;
+        };
+        let nn = T::Mat3::outer(n, n) * (T::TWO * self.scale);
+        for (row, &ka) in h.iter_mut().zip(&self.stencil) {
+            for (block, &kb) in row.iter_mut().zip(&self.stencil) {
+                *block = nn * (ka * kb);
+            }
+        }
         h
     }
 }

@@ -229,6 +229,37 @@ impl<T: Real> Membrane<T> {
     }
 }
 
+impl<T: Real> Membrane<T> {
+    /// The Eshelby energy-momentum tensor of the triangle in the pattern,
+    /// $$\Sigma = W I - F^T P = W I - C S,\qquad C = F^T F,$$
+    /// with $W = V / A_0$ the energy per pattern area and $P = F S$ the first
+    /// Piola–Kirchhoff stress (force per length); symmetric, since the St Venant–Kirchhoff
+    /// $S$ is a polynomial in $C$ and so commutes with it. Returned as $[\Sigma_{uu},
+    /// \Sigma_{uv}, \Sigma_{vv}]$.
+    ///
+    /// It is the stress of the pattern itself (Eshelby 1951; Gurtin, *Configurational
+    /// Forces as Basic Concepts of Continuum Physics*, 2000, ch. 3): moving a rest corner
+    /// $u_i$ of the triangle with the 3D positions held changes the energy by
+    /// $$\frac{\partial V}{\partial u_i} = A_0\thinspace\Sigma\thinspace\nabla N_i,$$
+    /// $N_i$ the corner's linear shape function in the pattern. A crack tip is such a
+    /// point, so $\Sigma$ gives the energy a tear releases as it moves
+    /// (`folio_tearing::release`). Units: force per length, like $S$.
+    #[must_use]
+    pub fn eshelby(&self, x: &NodeVecs<T, 3>) -> [T; 3] {
+        let f = self.deformation_gradient(x);
+        let (e, s) = self.strain_stress(f);
+        let tr = e[0] + e[2];
+        let norm_sq = e[0] * e[0] + T::TWO * e[1] * e[1] + e[2] * e[2];
+        let w = self.mu * norm_sq + T::HALF * self.lambda * tr * tr;
+        let c = [f.0.dot(f.0), f.0.dot(f.1), f.1.dot(f.1)];
+        [
+            w - (c[0] * s[0] + c[1] * s[1]),
+            -(c[0] * s[1] + c[1] * s[2]),
+            w - (c[1] * s[1] + c[2] * s[2]),
+        ]
+    }
+}
+
 impl<T: Real> Potential<T, 3> for Membrane<T> {
     fn value(&self, x: &NodeVecs<T, 3>) -> T {
         let (e, _) = self.strain_stress(self.deformation_gradient(x));

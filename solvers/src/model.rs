@@ -54,6 +54,15 @@ pub struct Term<K, const N: usize> {
     pub nodes: [u32; N],
 }
 
+/// A term whose kernel may change and whose nodes may not ([`PotentialSet::terms_mut`]).
+#[derive(Debug)]
+pub struct TermMut<'a, K, const N: usize> {
+    /// The kernel with its parameters.
+    pub kernel: &'a mut K,
+    /// Global node index of each local node.
+    pub nodes: &'a [u32; N],
+}
+
 /// Potentials of one kernel type: $V = w \sum_t V_t(x_{\text{nodes}(t)})$.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PotentialSet<T, P, const N: usize> {
@@ -86,6 +95,15 @@ impl<T, P, const N: usize> PotentialSet<T, P, N> {
     /// The kernel of term `t`, if there is one (values change, the pattern does not).
     pub fn kernel_mut(&mut self, t: usize) -> Option<&mut P> {
         self.terms.get_mut(t).map(|t| &mut t.kernel)
+    }
+
+    /// The terms with their kernels mutable and their nodes read-only (a kernel's parameters
+    /// may follow its nodes' positions; the stencils may not change).
+    pub fn terms_mut(&mut self) -> impl Iterator<Item = TermMut<'_, P, N>> {
+        self.terms.iter_mut().map(|t| TermMut {
+            kernel: &mut t.kernel,
+            nodes: &t.nodes,
+        })
     }
 
     /// The kernels, mutable (parameters such as a positional target may change every step;

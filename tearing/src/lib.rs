@@ -6,6 +6,8 @@
 //! - [`candidates`]: the potential tearing points (Sec. 4.1).
 //! - [`fiber`]: the seeded Perlin fiber texture $T_{\text{fibers}}(u, v)$ (Sec. 4.2).
 //! - [`split`]: the force split, release rate and direction (Sec. 5.1-5.2, eq. 4-6).
+//! - [`release`]: the energy a tear releases over a disk of fixed size, the $J$-integral
+//!   (independent of the mesh).
 //! - [`advance`]: one propagation on the sheet mesh, split or slide (Sec. 5.3, Fig. 8).
 //! - [`tears`]: [`Tears`], the tearing step: fracture energy (eq. 3), Griffith (eq. 1),
 //!   propagation, the tears' paths and textures.
@@ -28,6 +30,7 @@ pub mod candidates;
 pub mod detail;
 pub mod error;
 pub mod fiber;
+pub mod release;
 pub mod settings;
 pub mod sheet;
 pub mod split;
@@ -37,7 +40,8 @@ pub mod texture;
 pub use advance::Edit;
 pub use candidates::{Candidate, Kind};
 pub use error::TearingError;
-pub use settings::TearSettings;
+pub use release::TriangleLoads;
+pub use settings::{Estimator, TearSettings};
 pub use split::Split;
 pub use tears::{Evaluation, Propagation, Tear, TearStep, Tears};
 pub use texture::{AlphaPair, Side};

@@ -5,6 +5,22 @@ use crate::detail::DetailSettings;
 use crate::error::{TearingError, check_range};
 use crate::fiber::FiberSettings;
 
+/// How the tearing step reads the load on a potential tearing point.
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Estimator {
+    /// The energy released over a disk of [`TearSettings::disk_radius`] around the point,
+    /// the $J$-integral ([`crate::release`]): independent of the mesh.
+    Disk,
+    /// The seed's force split on the point's own triangles (Sec. 5.1-5.2, eq. 4-6,
+    /// [`crate::split`]): nodal forces, which shrink on a finer mesh.
+    Split,
+}
+
 /// Parameters of [`crate::Tears`]. Lengths in sheet units; forces in the physics' force
 /// units; release rates and fracture energies in force units per sheet unit.
 #[cfg_attr(
@@ -16,6 +32,13 @@ use crate::fiber::FiberSettings;
 pub struct TearSettings {
     /// Paper thickness $e$ of eq. 6 (sheet units).
     pub thickness: f64,
+    /// How the load on a tearing point is read: the disk's energy release or the seed's
+    /// force split.
+    pub estimator: Estimator,
+    /// Radius $R$ of the disk of [`Estimator::Disk`] (sheet units): the paper's flaw size
+    /// (a new tear from a border releases $W R$), and the size below which the tear does not
+    /// see detail. Keep it smaller than the distance from a tip to the fingers.
+    pub disk_radius: f64,
     /// The material constant $c$ of eq. 3 (seed default 0.005).
     pub fracture: f64,
     /// The damage $D \in [0, 1]$ at tear tips, eq. 3 (1 elsewhere): lower makes an existing
@@ -59,6 +82,8 @@ impl Default for TearSettings {
     fn default() -> Self {
         Self {
             thickness: 0.01,
+            estimator: Estimator::Split,
+            disk_radius: 1.0,
             fracture: 0.005,
             damage: 0.5,
             speed: 50.0,
@@ -83,6 +108,7 @@ impl TearSettings {
     /// [`TearingError`] naming the first bad field.
     pub fn validate(&self) -> Result<(), TearingError> {
         check_range("TearSettings.thickness", self.thickness, 1e-9, 1e3)?;
+        check_range("TearSettings.disk_radius", self.disk_radius, 1e-6, 1e6)?;
         check_range("TearSettings.fracture", self.fracture, 0.0, 1e12)?;
         check_range("TearSettings.damage", self.damage, 0.0, 1.0)?;
         check_range("TearSettings.speed", self.speed, 0.0, 1e6)?;

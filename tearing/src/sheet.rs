@@ -15,5 +15,5 @@ mod simulation;
 
 pub use error::TearingSheetError;
 pub use model::SheetModel;
-pub use settings::{SheetEffects, SheetSettings};
+pub use settings::{HingeBending, SheetEffects, SheetSettings};
 pub use simulation::{Finger, FrameReport, TearingSheet};

@@ -30,9 +30,31 @@ use crate::candidates::{Candidate, Kind, collect};
 use crate::detail::{Raster, detail_path};
 use crate::error::TearingError;
 use crate::fiber::FiberTexture;
-use crate::settings::TearSettings;
+use crate::release::{TriangleLoads, cone_weights, configurational_force};
+use crate::settings::{Estimator, TearSettings};
 use crate::split::{Pull, Split, split_forces, unit};
 use crate::texture::{AlphaPair, Side};
+
+/// $E_r = |J| / e$ and $t = J / |J|$ at vertex `v` over the disk of the settings
+/// ([`crate::release`]); zero for no release.
+fn disk_load<T: Real>(
+    mesh: &SheetMesh<T>,
+    loads: &TriangleLoads<'_, T>,
+    v: u32,
+    settings: &TearSettings,
+    weights: &mut Vec<f64>,
+) -> (T, [T; 2]) {
+    cone_weights(mesh, v, settings.disk_radius, weights);
+    let j = configurational_force(mesh, loads, weights);
+    let norm = math::sqrt(j[0] * j[0] + j[1] * j[1]);
+    if !(norm > 0.0 && norm.is_finite()) {
+        return (T::ZERO, [T::ZERO; 2]);
+    }
+    (
+        T::from_f64(norm / settings.thickness),
+        [T::from_f64(j[0] / norm), T::from_f64(j[1] / norm)],
+    )
+}
 
 /// One tear: its path in the pattern, its tip, and its alpha textures.
 #[derive(Clone, Debug)]
@@ -49,13 +71,19 @@ pub struct Tear<T> {
     pub alpha: AlphaPair,
 }
 
-/// A candidate with its split and fracture energy.
+/// A candidate with its load and fracture energy.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Evaluation<T> {
     /// The point.
     pub candidate: Candidate,
-    /// Force split, release rate and direction (eq. 4-6).
-    pub split: Split<T>,
+    /// $E_r$, energy released per unit of new crack area (force per sheet unit): the disk's
+    /// $|J| / e$ ([`crate::release`]) or the split's eq. 6, per
+    /// [`TearSettings::estimator`].
+    pub release_rate: T,
+    /// Unit tear direction in the pattern (zero when nothing is released).
+    pub direction: [T; 2],
+    /// The seed's force split (eq. 4-6), when that is the estimator.
+    pub split: Option<Split<T>>,
     /// $E_f$ (eq. 3).
     pub fracture_energy: T,
     /// `true` when the direction points into the sheet.
@@ -105,6 +133,7 @@ pub struct Tears<T: Real> {
     pulls: Vec<Pull<T>>,
     pixels: Vec<(u32, u32)>,
     tip_buffer: Vec<u32>,
+    weights: Vec<f64>,
 }
 
 impl<T: Real> Tears<T> {
@@ -131,6 +160,7 @@ impl<T: Real> Tears<T> {
             pulls: Vec::new(),
             pixels: Vec::new(),
             tip_buffer: Vec::new(),
+            weights: Vec::new(),
         })
     }
 
@@ -177,14 +207,13 @@ impl<T: Real> Tears<T> {
         T::from_f64(self.settings.fracture * fiber * damage)
     }
 
-    /// Examines the candidates of `mesh` (module docs). `gradients[t][k]` is
-    /// $\partial V_t / \partial x$ of triangle `t`'s stretching energy at its corner `k`;
-    /// `fingers` are the vertices held by fingers, `junctions` the cone layer's junction
-    /// points.
+    /// Examines the candidates of `mesh` (module docs). `loads` are the triangles'
+    /// stretching gradients and Eshelby tensors; `fingers` are the vertices held by fingers,
+    /// `junctions` the cone layer's junction points.
     pub fn evaluate(
         &mut self,
         mesh: &SheetMesh<T>,
-        gradients: &[[T::Vec3; 3]],
+        loads: &TriangleLoads<'_, T>,
         fingers: &[u32],
         junctions: &[u32],
     ) {
@@ -203,6 +232,23 @@ impl<T: Real> Tears<T> {
         self.evaluations.clear();
         for &candidate in &self.candidates {
             let v = candidate.vertex;
+            let p = mesh.pattern()[v as usize];
+            let fracture_energy = self.fracture_energy(p, candidate.kind == Kind::Tip);
+            if self.settings.estimator == Estimator::Disk {
+                let (release_rate, direction) =
+                    disk_load(mesh, loads, v, &self.settings, &mut self.weights);
+                let inward = release_rate > T::ZERO && wedge(mesh, v, direction).is_some();
+                self.evaluations.push(Evaluation {
+                    candidate,
+                    release_rate,
+                    direction,
+                    split: None,
+                    fracture_energy,
+                    inward,
+                });
+                continue;
+            }
+            let gradients = loads.gradients;
             self.pulls.clear();
             let mut normal = T::Vec3::ZERO;
             for h in mesh.fan_iter(v) {
@@ -228,11 +274,12 @@ impl<T: Real> Tears<T> {
                 T::from_f64(self.settings.bisector_tolerance),
             );
             let inward = split.release_rate > T::ZERO && wedge(mesh, v, split.direction).is_some();
-            let p = mesh.pattern()[v as usize];
             self.evaluations.push(Evaluation {
                 candidate,
-                split,
-                fracture_energy: self.fracture_energy(p, candidate.kind == Kind::Tip),
+                release_rate: split.release_rate,
+                direction: split.direction,
+                split: Some(split),
+                fracture_energy,
                 inward,
             });
         }
@@ -250,8 +297,8 @@ impl<T: Real> Tears<T> {
         let best = self
             .evaluations
             .iter()
-            .filter(|e| e.inward && e.split.release_rate >= e.fracture_energy)
-            .map(|e| (e.split.release_rate / (e.fracture_energy + tiny), *e))
+            .filter(|e| e.inward && e.release_rate >= e.fracture_energy)
+            .map(|e| (e.release_rate / (e.fracture_energy + tiny), *e))
             .fold(None, |best: Option<(T, Evaluation<T>)>, x| match best {
                 Some(b) if b.0 >= x.0 => Some(b),
                 _ => Some(x),
@@ -260,14 +307,14 @@ impl<T: Real> Tears<T> {
         let v = e.candidate.vertex;
         let from = mesh.pattern()[v as usize];
         let tear = self.tears.iter().position(|t| t.tip == Some(v));
-        let t = e.split.direction;
+        let t = e.direction;
         let straight = tear.is_some_and(|i| {
             let d = self.tears[i].direction;
             let cos = (d[0] * t[0] + d[1] * t[1]).to_f64().clamp(-1.0, 1.0);
             acos(cos) <= self.settings.turn_threshold
         });
         let length = T::from_f64(
-            (self.settings.speed * e.split.release_rate.to_f64())
+            (self.settings.speed * e.release_rate.to_f64())
                 .clamp(self.settings.min_step, self.settings.max_step),
         );
         let outcome: Advance = match advance(
@@ -298,7 +345,7 @@ impl<T: Real> Tears<T> {
             kind: e.candidate.kind,
             from,
             to,
-            release_rate: e.split.release_rate,
+            release_rate: e.release_rate,
             fracture_energy: e.fracture_energy,
             edit: outcome.edit,
         });
@@ -309,11 +356,11 @@ impl<T: Real> Tears<T> {
     pub fn step(
         &mut self,
         mesh: &mut SheetMesh<T>,
-        gradients: &[[T::Vec3; 3]],
+        loads: &TriangleLoads<'_, T>,
         fingers: &[u32],
         junctions: &[u32],
     ) -> TearStep<T> {
-        self.evaluate(mesh, gradients, fingers, junctions);
+        self.evaluate(mesh, loads, fingers, junctions);
         self.propagate(mesh)
     }
 

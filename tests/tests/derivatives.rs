@@ -442,3 +442,58 @@ fn membrane_projected_hessian_is_psd_and_exact_under_tension() {
     );
     assert!(tension > 10 && compression > 10 && indefinite_exact > 10);
 }
+
+/// The Eshelby tensor is the energy's derivative with respect to the pattern: moving a
+/// rest corner $u_i$ with the 3D positions held changes $V$ by $A_0 \Sigma \nabla N_i$
+/// (`Membrane::eshelby`), checked by central differences of the energy rebuilt on the
+/// moved pattern.
+#[test]
+fn membrane_eshelby_is_the_pattern_derivative_of_the_energy() {
+    let mut rng = Rng::new(19);
+    let mut worst: f64 = 0.0;
+    for _ in 0..CONFIGS {
+        let u = pattern_triangle(&mut rng);
+        let (y, nu) = (rng.uniform(0.5, 3.0), rng.uniform(0.0, 0.49));
+        let m = Membrane::new(u, y, nu).unwrap();
+        let x = deformed(&mut rng, &u, (0.7, 1.3), 0.2);
+        let sigma = m.eshelby(&x);
+        // grad N_i: the rows of dm_inv give grad N_1, grad N_2; grad N_0 = -(sum).
+        let b = m.dm_inv;
+        let grads = [
+            [-(b[0][0] + b[1][0]), -(b[0][1] + b[1][1])],
+            [b[0][0], b[0][1]],
+            [b[1][0], b[1][1]],
+        ];
+        let scale = m.rest_area * (sigma[0].abs() + sigma[1].abs() + sigma[2].abs()) + 1e-12;
+        for (i, g) in grads.iter().enumerate() {
+            let analytic = [
+                m.rest_area * (sigma[0] * g[0] + sigma[1] * g[1]),
+                m.rest_area * (sigma[1] * g[0] + sigma[2] * g[1]),
+            ];
+            for k in 0..2 {
+                let h = 1e-6;
+                let energy = |d: f64| {
+                    let mut v = u;
+                    v[i][k] += d;
+                    Membrane::new(v, y, nu).unwrap().value(&x)
+                };
+                let fd = (energy(h) - energy(-h)) / (2.0 * h);
+                worst = worst.max((fd - analytic[k]).abs() / scale);
+            }
+        }
+    }
+    println!("Eshelby against the pattern derivative: worst relative error {worst:.2e}");
+    assert!(worst < 1e-6, "{worst}");
+}
+
+/// The hinge that counts only folds (`Hinge::orient` at another configuration: its normal
+/// is a parameter within a step).
+#[test]
+fn hinge_folds_only() {
+    potentials("hinge (folds only)", 20, |r| {
+        let u = pattern_hinge(r);
+        let mut hinge = Hinge::new(u).unwrap();
+        hinge.orient(&deformed(r, &u, (0.7, 1.3), 0.4));
+        (hinge, deformed(r, &u, (0.7, 1.3), 0.4))
+    });
+}

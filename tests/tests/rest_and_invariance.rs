@@ -297,12 +297,66 @@ fn hinge_vanishes_on_affine_images_of_the_pattern() {
     }
 }
 
+/// A hinge that takes its normal from the configuration it is evaluated at, as the sheet
+/// does at the start of each step ([`Hinge::orient`]).
+struct Oriented(Hinge<f64>);
+
+impl Oriented {
+    fn at(&self, x: &NodeVecs<f64, 4>) -> Hinge<f64> {
+        let mut h = self.0;
+        h.orient(x);
+        h
+    }
+}
+
+impl Potential<f64, 4> for Oriented {
+    fn value(&self, x: &NodeVecs<f64, 4>) -> f64 {
+        self.at(x).value(x)
+    }
+    fn gradient(&self, x: &NodeVecs<f64, 4>) -> NodeVecs<f64, 4> {
+        self.at(x).gradient(x)
+    }
+    fn hessian(&self, x: &NodeVecs<f64, 4>) -> folio_kernels::term::Blocks<f64, 4> {
+        self.at(x).hessian(x)
+    }
+}
+
+/// With a normal ([`Hinge::orient`]), the sheet's in-plane deformations that are not affine
+/// (a smooth bend of the pattern within its own plane) bend nothing: the hinge counts only
+/// $s$ along its normal. (The stencil itself, $s$, is not zero there: it is the in-plane
+/// cotangent Laplacian, which the paper's energy counts.)
+#[test]
+fn hinge_ignores_in_plane_deformation() {
+    let mut rng = Rng::new(59);
+    let mut largest_stencil: f64 = 0.0;
+    for _ in 0..200 {
+        let u = pattern_hinge(&mut rng);
+        let hinge = Oriented(Hinge::new(u).unwrap());
+        let (a, b) = (rng.uniform(-0.05, 0.05), rng.uniform(-0.05, 0.05));
+        let x = u.map(|p| DVec3::new(p[0] + a * p[1] * p[1], p[1] + b * p[0] * p[0], 0.0));
+        let (q, t) = (rng.rotation(), rng.vec(3.0));
+        let moved = rigid(&x, q, t);
+        largest_stencil = largest_stencil.max(hinge.0.apply(&x).length());
+        let v = hinge.value(&moved);
+        assert!(
+            v.abs() <= 1e-24,
+            "in-plane deformation bent the hinge: {v:e}"
+        );
+        assert!(hinge.0.value(&moved) > 0.0 || hinge.0.apply(&x).length() < 1e-9);
+    }
+    assert!(
+        largest_stencil > 1e-3,
+        "the in-plane cases were affine: {largest_stencil}"
+    );
+}
+
 #[test]
 fn hinge_fold_energy_matches_the_dihedral_angle() {
     let mut rng = Rng::new(56);
     for _ in 0..200 {
         let u = pattern_hinge(&mut rng);
         let hinge = Hinge::new(u).unwrap();
+        let folds_only = Oriented(hinge);
         let (area_a, _) = folio_tests::area2_and_longest([u[0], u[1], u[2]]);
         let (area_b, _) = folio_tests::area2_and_longest([u[1], u[0], u[3]]);
         let (area_a, area_b) = (area_a / 2.0, area_b / 2.0);
@@ -318,6 +372,7 @@ fn hinge_fold_energy_matches_the_dihedral_angle() {
         let (q, t) = (rng.rotation(), rng.vec(3.0));
         let theta = rng.uniform(-3.1, 3.1);
         let v = hinge.value(&rigid(&fold(theta), q, t));
+        let v_folds = folds_only.value(&rigid(&fold(theta), q, t));
         let expected =
             12.0 * edge.length_squared() * (theta / 2.0).sin().powi(2) / (area_a + area_b);
         assert!(
@@ -325,6 +380,10 @@ fn hinge_fold_energy_matches_the_dihedral_angle() {
             "fold by {theta}: energy {v} vs {expected}"
         );
         assert!(v > 0.0, "a fold by {theta} must cost energy");
+        assert!(
+            (v_folds - expected).abs() <= 1e-12 * expected.max(1e-3),
+            "folds only, fold by {theta}: energy {v_folds} vs {expected}"
+        );
         // Small angles: quadratic in theta, V / theta^2 -> 3 |e|^2 / (A_a + A_b).
         let small = 1e-4;
         let ratio = hinge.value(&fold(small)) / small.powi(2);
@@ -397,6 +456,10 @@ fn membrane_and_hinge_are_invariant_under_rigid_motion() {
         worst = folio_tests::worst(
             worst,
             potential_invariance(&Hinge::new(h).unwrap(), &x4, q, t),
+        );
+        worst = folio_tests::worst(
+            worst,
+            potential_invariance(&Oriented(Hinge::new(h).unwrap()), &x4, q, t),
         );
     }
     println!("worst rigid-motion discrepancy (sheet terms) {worst:.2e}");

@@ -15,10 +15,10 @@ use alloc::vec::Vec;
 
 use folio_geometry::SheetMesh;
 use folio_geometry::sheet::{NONE, next_half_edge};
-use folio_kernels::Real;
 use folio_kernels::gravity::Gravity;
 use folio_kernels::hinge::Hinge;
 use folio_kernels::membrane::Membrane;
+use folio_kernels::{Potential, Real};
 
 use super::error::TearingSheetError;
 use super::settings::SheetSettings;
@@ -115,6 +115,34 @@ impl<T: Real> SheetModel<T> {
     #[must_use]
     pub fn membranes(&self) -> &PotentialSet<T, Membrane<T>, 3> {
         &self.membranes
+    }
+
+    /// What the tearing step reads of every triangle at positions `x`, into the two
+    /// buffers (cleared first): the stretching gradient at its corners, and its Eshelby
+    /// tensor ([`Membrane::eshelby`]).
+    pub fn triangle_loads(
+        &self,
+        x: &[T::Vec3],
+        gradients: &mut Vec<[T::Vec3; 3]>,
+        eshelby: &mut Vec<[T; 3]>,
+    ) {
+        gradients.clear();
+        eshelby.clear();
+        for term in self.membranes.terms() {
+            let local = term.nodes.map(|i| x[i as usize]);
+            gradients.push(term.kernel.gradient(&local));
+            eshelby.push(term.kernel.eshelby(&local));
+        }
+    }
+
+    /// Points every hinge's normal along its two triangles' mean normal at positions `x`
+    /// ([`Hinge::orient`]): called at the start of each step, so that the bending counts
+    /// only the hinges' folds, not in-plane deformation.
+    pub fn orient_hinges(&mut self, x: &[T::Vec3]) {
+        for term in self.hinges.terms_mut() {
+            let local = term.nodes.map(|i| x[i as usize]);
+            term.kernel.orient(&local);
+        }
     }
 
     /// The hinges (interior edges).

@@ -42,6 +42,24 @@ impl Default for SheetEffects {
     }
 }
 
+/// What the hinges' bending energy counts ([`folio_kernels::hinge`]).
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HingeBending {
+    /// The paper's quadratic energy $c\lVert s\rVert^2$ (Bergou et al. 2006): folds, and
+    /// also in-plane deformations that are not affine, which stiffens a tear tip's field on
+    /// every finer mesh.
+    Bergou,
+    /// Only the fold: $c(\hat n \cdot s)^2$ with the hinge's normal set at the start of each
+    /// step; the membrane alone carries in-plane deformation, so the energy a tear releases
+    /// converges with the mesh (`folio_tearing::release`).
+    Folds,
+}
+
 /// Settings of [`super::TearingSheet`].
 #[cfg_attr(
     feature = "serde",
@@ -64,6 +82,8 @@ pub struct SheetSettings<T: Real> {
     pub poisson: T,
     /// Weight of the hinge bending energy (force times sheet unit).
     pub bending: T,
+    /// What the hinges count.
+    pub hinge_bending: HingeBending,
     /// Mass per pattern area.
     pub density: T,
     /// Gravitational acceleration along −Y (sheet units / s²), when gravity is on.
@@ -94,6 +114,7 @@ impl<T: Real> Default for SheetSettings<T> {
             stretch_modulus: T::from_f64(3e-3),
             poisson: T::from_f64(0.3),
             bending: T::from_f64(1e-5),
+            hinge_bending: HingeBending::Bergou,
             density: T::from_f64(1e-8),
             gravity: T::from_f64(9.81),
             time_step: T::from_f64(1.0 / 60.0),

@@ -14,14 +14,14 @@
 
 use alloc::vec::Vec;
 
-use crate::{Propagation, Tears};
+use crate::{Propagation, Tears, TriangleLoads};
 use folio_geometry::SheetMesh;
 use folio_geometry::sheet::ConeLayer;
-use folio_kernels::{Potential, Real, Vec3Ops};
+use folio_kernels::{Real, Vec3Ops};
 
 use super::error::TearingSheetError;
 use super::model::SheetModel;
-use super::settings::SheetSettings;
+use super::settings::{HingeBending, SheetSettings};
 use folio_solvers::report::StepStatus;
 use folio_solvers::settings::Settings;
 use folio_solvers::step::{Solver, State};
@@ -66,6 +66,7 @@ pub struct TearingSheet<T: Real> {
     fingers: Vec<Finger<T>>,
     held: Vec<u32>,
     gradients: Vec<[T::Vec3; 3]>,
+    eshelby: Vec<[T; 3]>,
     propagations: Vec<Propagation<T>>,
     /// The mesh's topology version the model was built for.
     topology_seen: u64,
@@ -114,6 +115,7 @@ impl<T: Real> TearingSheet<T> {
             fingers: Vec::new(),
             held: Vec::new(),
             gradients: Vec::new(),
+            eshelby: Vec::new(),
             propagations: Vec::new(),
             topology_seen: mesh.topology_version(),
             mesh,
@@ -261,10 +263,14 @@ impl<T: Real> TearingSheet<T> {
                 } else {
                     &[]
                 };
+                let loads = TriangleLoads {
+                    gradients: &self.gradients,
+                    eshelby: &self.eshelby,
+                };
                 // The held vertices are the fingers' vertices, in finger order.
                 let step = self
                     .tears
-                    .step(&mut self.mesh, &self.gradients, &self.held, junctions);
+                    .step(&mut self.mesh, &loads, &self.held, junctions);
                 if step.refused.is_some() {
                     report.refused += 1;
                 }
@@ -285,14 +291,14 @@ impl<T: Real> TearingSheet<T> {
         report
     }
 
-    /// The in-plane stretching gradient of every triangle at its corners.
+    /// The in-plane stretching gradient of every triangle at its corners, and its Eshelby
+    /// tensor.
     fn update_gradients(&mut self) {
-        let x = self.mesh.positions();
-        self.gradients.clear();
-        for term in self.model.membranes().terms() {
-            let local = term.nodes.map(|i| x[i as usize]);
-            self.gradients.push(term.kernel.gradient(&local));
-        }
+        self.model.triangle_loads(
+            self.mesh.positions(),
+            &mut self.gradients,
+            &mut self.eshelby,
+        );
     }
 
     /// The model after an edit of the mesh: rebuilt (analysis at the next step) when the
@@ -347,6 +353,9 @@ impl<T: Real> TearingSheet<T> {
             self.topology_seen = self.mesh.topology_version();
         }
         let stale = self.topology_seen != self.mesh.topology_version();
+        if self.settings.hinge_bending == HingeBending::Folds {
+            self.model.orient_hinges(&self.state.x);
+        }
         let outcome = if stale {
             Err(())
         } else {
