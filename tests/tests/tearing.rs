@@ -397,6 +397,82 @@ fn bad_input_is_refused() {
     assert!(sheet.propagations().is_empty(), "an unloaded sheet tore");
 }
 
+/// A finger's pad holds every vertex within its radius on its own side of a tear, and
+/// moves them with the finger: a 12 x 9 sheet of 16 x 12 quads (cells 0.75) slit up
+/// $u = 6$ to $v = 2.25$, a pad of radius 1 at $(6.75, 0.75)$ right of the slit. Held: the
+/// grid vertices within 1 of the point (counted here from the grid), of which the slit's
+/// lip at $(6, 0.75)$ only on the right; moved by the finger's displacement after a frame;
+/// released, nothing is held. A pad of radius 0 holds its one vertex.
+#[test]
+fn a_finger_pad_holds_its_side_of_a_tear() {
+    let slit = |radius: f64| {
+        let mut mesh = SheetMesh::rectangle(12.0, 9.0, 16, 12).expect("mesh");
+        for j in 0..3 {
+            mesh.cut_edge(8 + 17 * j, 8 + 17 * (j + 1)).expect("slit");
+        }
+        let settings = SheetSettings {
+            nx: 16,
+            ny: 12,
+            finger_radius: radius,
+            ..SheetSettings::default()
+        };
+        TearingSheet::with_mesh(mesh, settings).expect("sheet")
+    };
+    let held = |sheet: &TearingSheet<f64>| -> Vec<u32> {
+        (0..sheet.mesh().vertex_count() as u32)
+            .filter(|&v| sheet.model().is_held(v as usize))
+            .collect()
+    };
+    let at = [6.75, 0.75];
+    let within: usize = (0..=16)
+        .flat_map(|i| (0..=12).map(move |j| [0.75 * f64::from(i), 0.75 * f64::from(j)]))
+        .filter(|&p| dist(p, at) <= 1.0)
+        .count();
+
+    let mut sheet = slit(1.0);
+    let finger = sheet.grab(at).expect("grab");
+    let pad = held(&sheet);
+    assert_eq!(pad.len(), within, "{pad:?}");
+    let mesh = sheet.mesh();
+    let on_lip: Vec<u32> = pad
+        .iter()
+        .copied()
+        .filter(|&v| mesh.pattern()[v as usize] == [6.0, 0.75])
+        .collect();
+    assert_eq!(on_lip.len(), 1, "one of the two lips at (6, 0.75)");
+    let right_of_slit = mesh.fan_iter(on_lip[0]).all(|h| {
+        let t = mesh.triangles()[h as usize / 3];
+        t.iter()
+            .map(|&i| mesh.pattern()[i as usize][0])
+            .sum::<f64>()
+            / 3.0
+            > 6.0
+    });
+    assert!(right_of_slit, "the pad holds the far lip");
+
+    let start: Vec<DVec3> = pad
+        .iter()
+        .map(|&v| sheet.mesh().positions()[v as usize])
+        .collect();
+    let push = DVec3::new(0.05, -0.02, 0.01);
+    let target = sheet.fingers()[finger].target + push;
+    sheet.move_finger(finger, target).expect("move");
+    assert!(sheet.step().status.advanced());
+    for (&v, x0) in pad.iter().zip(&start) {
+        let x = sheet.mesh().positions()[v as usize];
+        assert!(
+            (x - (*x0 + push)).length() < 1e-12,
+            "vertex {v}: {x} from {x0}"
+        );
+    }
+    sheet.release(finger).expect("release");
+    assert!(held(&sheet).is_empty());
+
+    let mut point = slit(0.0);
+    point.grab(at).expect("grab");
+    assert_eq!(held(&point).len(), 1);
+}
+
 /// Two fingers grabbing close points and pulled apart violently: the solver may
 /// refuse steps, but the sheet stays valid and finite.
 #[test]

@@ -26,13 +26,23 @@ use folio_solvers::report::StepStatus;
 use folio_solvers::settings::Settings;
 use folio_solvers::step::{Solver, State};
 
-/// A finger holding one vertex of the sheet.
+/// A finger holding the sheet: the vertex at its point and, through its pad, every vertex
+/// within [`SheetSettings::finger_radius`] of it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Finger<T: Real> {
-    /// The held vertex.
+    /// The vertex at the finger's point (the pad's centre).
     pub vertex: u32,
-    /// Where the finger is (3D, sheet units).
+    /// Where the finger is (3D, sheet units): where its centre vertex goes.
     pub target: T::Vec3,
+}
+
+/// A vertex held by a finger's pad: it keeps its offset from the pad's centre, as it was
+/// when the finger grabbed (the pad moves rigidly with the finger, without turning).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct PadVertex<T: Real> {
+    vertex: u32,
+    finger: usize,
+    offset: T::Vec3,
 }
 
 /// What one frame did.
@@ -64,6 +74,10 @@ pub struct TearingSheet<T: Real> {
     layer: ConeLayer<T>,
     tears: Tears<T>,
     fingers: Vec<Finger<T>>,
+    /// The fingers' centre vertices, in finger order (the tearing step's finger candidates).
+    centres: Vec<u32>,
+    /// Every vertex the pads hold, and for each its finger and offset.
+    pads: Vec<PadVertex<T>>,
     held: Vec<u32>,
     gradients: Vec<[T::Vec3; 3]>,
     eshelby: Vec<[T; 3]>,
@@ -113,6 +127,8 @@ impl<T: Real> TearingSheet<T> {
             state,
             tears,
             fingers: Vec::new(),
+            centres: Vec::new(),
+            pads: Vec::new(),
             held: Vec::new(),
             gradients: Vec::new(),
             eshelby: Vec::new(),
@@ -172,12 +188,13 @@ impl<T: Real> TearingSheet<T> {
     }
 
     /// A finger pinching the sheet at pattern point `at`: the vertex there, or a new one
-    /// inserted at it (snapped to a vertex or an edge within the tearing snap distance).
+    /// inserted at it (snapped to a vertex or an edge within the tearing snap distance), and
+    /// every vertex within [`SheetSettings::finger_radius`] of it that no other finger holds.
     /// Returns the finger's index; the finger starts where the point is.
     ///
     /// # Errors
-    /// [`TearingSheetError::FingerOffSheet`], [`TearingSheetError::CoincidentFingers`];
-    /// the sheet is unchanged then.
+    /// [`TearingSheetError::FingerOffSheet`], [`TearingSheetError::CoincidentFingers`] (the
+    /// point's vertex is held already); the sheet is unchanged then.
     pub fn grab(&mut self, at: [T; 2]) -> Result<usize, TearingSheetError> {
         if !(at[0].is_finite() && at[1].is_finite()) || self.mesh.locate(at).is_none() {
             return Err(TearingSheetError::FingerOffSheet);
@@ -189,18 +206,36 @@ impl<T: Real> TearingSheet<T> {
         if self.held.contains(&vertex) {
             return Err(TearingSheetError::CoincidentFingers { vertex });
         }
-        let mut held = self.held.clone();
-        held.push(vertex);
+        let finger = self.fingers.len();
+        let centre = mesh.positions()[vertex as usize];
+        let mut pads = self.pads.clone();
+        pads.push(PadVertex {
+            vertex,
+            finger,
+            offset: T::Vec3::ZERO,
+        });
+        for i in pad_vertices(&mesh, vertex, self.settings.finger_radius) {
+            if i != vertex && !self.held.contains(&i) {
+                pads.push(PadVertex {
+                    vertex: i,
+                    finger,
+                    offset: mesh.positions()[i as usize] - centre,
+                });
+            }
+        }
+        let held: Vec<u32> = pads.iter().map(|h| h.vertex).collect();
         self.model.rebuild(&mesh, &held, &self.settings)?;
         self.topology_seen = mesh.topology_version();
         self.mesh = mesh;
         self.held = held;
+        self.pads = pads;
+        self.centres.push(vertex);
         self.sync_state();
         self.fingers.push(Finger {
             vertex,
-            target: self.mesh.positions()[vertex as usize],
+            target: centre,
         });
-        Ok(self.fingers.len() - 1)
+        Ok(finger)
     }
 
     /// Moves finger `index` to `target` (3D); the sheet follows at the next frame.
@@ -229,9 +264,22 @@ impl<T: Real> TearingSheet<T> {
         if index >= self.fingers.len() {
             return Err(TearingSheetError::NoSuchFinger { index });
         }
-        let finger = self.fingers.remove(index);
-        self.held.retain(|&v| v != finger.vertex);
-        self.model.rebuild(&self.mesh, &self.held, &self.settings)?;
+        let held: Vec<u32> = self
+            .pads
+            .iter()
+            .filter(|h| h.finger != index)
+            .map(|h| h.vertex)
+            .collect();
+        self.model.rebuild(&self.mesh, &held, &self.settings)?;
+        self.fingers.remove(index);
+        self.centres.remove(index);
+        self.pads.retain(|h| h.finger != index);
+        for h in &mut self.pads {
+            if h.finger > index {
+                h.finger -= 1;
+            }
+        }
+        self.held = held;
         Ok(())
     }
 
@@ -267,10 +315,9 @@ impl<T: Real> TearingSheet<T> {
                     gradients: &self.gradients,
                     eshelby: &self.eshelby,
                 };
-                // The held vertices are the fingers' vertices, in finger order.
                 let step = self
                     .tears
-                    .step(&mut self.mesh, &loads, &self.held, junctions);
+                    .step(&mut self.mesh, &loads, &self.centres, junctions);
                 if step.refused.is_some() {
                     report.refused += 1;
                 }
@@ -331,15 +378,14 @@ impl<T: Real> TearingSheet<T> {
     /// One implicit step: held vertices to their fingers, step, back into the mesh.
     fn physics(&mut self, report: &mut FrameReport<T>, first: bool) {
         let h = self.settings.time_step;
-        if first {
-            for f in &self.fingers {
-                let i = f.vertex as usize;
-                self.state.v[i] = (f.target - self.state.x[i]) * (T::ONE / h);
-                self.state.x[i] = f.target;
-            }
-        } else {
-            for f in &self.fingers {
-                self.state.v[f.vertex as usize] = T::Vec3::ZERO;
+        for pad in &self.pads {
+            let i = pad.vertex as usize;
+            if first {
+                let target = self.fingers[pad.finger].target + pad.offset;
+                self.state.v[i] = (target - self.state.x[i]) * (T::ONE / h);
+                self.state.x[i] = target;
+            } else {
+                self.state.v[i] = T::Vec3::ZERO;
             }
         }
         // A model the kernels refused at the last edit is not the mesh's: try again, and
@@ -384,4 +430,29 @@ impl<T: Real> TearingSheet<T> {
             report.status = status;
         }
     }
+}
+
+/// The vertices of a pad of `radius` at vertex `centre`: those within that pattern
+/// distance of `centre` that the sheet connects to it through such vertices, so that a pad
+/// next to a tear does not hold the far lip (unless it covers the tip).
+fn pad_vertices<T: Real>(mesh: &SheetMesh<T>, centre: u32, radius: T) -> Vec<u32> {
+    let p = mesh.pattern()[centre as usize];
+    let reach = radius * T::from_f64(1.0 + 1e-6);
+    let inside = |v: u32| {
+        let q = mesh.pattern()[v as usize];
+        (q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]) <= reach * reach
+    };
+    let mut found = alloc::vec![centre];
+    let mut next = 0;
+    while let Some(&v) = found.get(next) {
+        next += 1;
+        for h in mesh.fan_iter(v) {
+            for w in mesh.triangles()[h as usize / 3] {
+                if !found.contains(&w) && inside(w) {
+                    found.push(w);
+                }
+            }
+        }
+    }
+    found
 }
