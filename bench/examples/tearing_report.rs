@@ -83,7 +83,7 @@ impl Times {
 fn play(effects: SheetEffects, parts: bool) -> (Events, Times) {
     let mut scene = Scene::notched(effects, ASYMMETRIC);
     let (mut ev, mut tm) = (Events::default(), Times::default());
-    let (mut gradients, mut eshelby) = (Vec::new(), Vec::new());
+    let mut loads = folio_tearing::LoadBuffers::default();
     for frame in 0..FRAMES {
         scene.move_fingers();
         let t = Instant::now();
@@ -99,13 +99,12 @@ fn play(effects: SheetEffects, parts: bool) -> (Events, Times) {
         }
         if parts {
             let t = Instant::now();
-            scene.sheet.model().triangle_loads(
-                scene.sheet.mesh().positions(),
-                &mut gradients,
-                &mut eshelby,
-            );
+            scene
+                .sheet
+                .model()
+                .triangle_loads(scene.sheet.mesh().positions(), &mut loads);
             tm.gradients.push(t.elapsed().as_secs_f64());
-            black_box((&gradients, &eshelby));
+            black_box(&loads);
 
             let mut tear = TearInputs::of(&scene.sheet);
             let t = Instant::now();

@@ -12,7 +12,7 @@ use folio_geometry::SheetMesh;
 use folio_geometry::sheet::{ConeLayer, ConeSettings};
 use folio_kernels::Real;
 use folio_tearing::sheet::{FrameReport, SheetEffects, SheetSettings, TearingSheet};
-use folio_tearing::{TearStep, Tears, TriangleLoads};
+use folio_tearing::{LoadBuffers, TearStep, Tears};
 
 /// The 3D vector type of `f64`.
 pub type V3 = <f64 as Real>::Vec3;
@@ -108,10 +108,11 @@ pub struct TearInputs {
     pub mesh: SheetMesh<f64>,
     /// The tears (their buffers, paths and alpha textures).
     pub tears: Tears<f64>,
-    /// The membranes' gradients at the mesh's positions.
-    pub gradients: Vec<[V3; 3]>,
-    /// The membranes' Eshelby tensors at the mesh's positions.
-    pub eshelby: Vec<[f64; 3]>,
+    /// The membranes' gradients, Eshelby tensors and deformation gradients at the mesh's
+    /// positions.
+    pub loads: LoadBuffers<f64>,
+    /// The membranes' 2D Young's modulus and Poisson's ratio.
+    pub material: [f64; 2],
     /// The held vertices.
     pub fingers: Vec<u32>,
     /// The cone layer's junction points (none when cones are off).
@@ -122,10 +123,10 @@ impl TearInputs {
     /// The inputs of the next tearing step of `sheet`, copied.
     #[must_use]
     pub fn of(sheet: &TearingSheet<f64>) -> Self {
-        let (mut gradients, mut eshelby) = (Vec::new(), Vec::new());
+        let mut loads = LoadBuffers::default();
         sheet
             .model()
-            .triangle_loads(sheet.mesh().positions(), &mut gradients, &mut eshelby);
+            .triangle_loads(sheet.mesh().positions(), &mut loads);
         let junctions = if sheet.settings().effects.cones {
             sheet.layer().junctions.clone()
         } else {
@@ -134,8 +135,8 @@ impl TearInputs {
         Self {
             mesh: sheet.mesh().clone(),
             tears: sheet.tears().clone(),
-            gradients,
-            eshelby,
+            loads,
+            material: [sheet.settings().stretch_modulus, sheet.settings().poisson],
             fingers: sheet.fingers().iter().map(|f| f.vertex).collect(),
             junctions,
         }
@@ -143,10 +144,7 @@ impl TearInputs {
 
     /// [`Tears::step`] on the copies.
     pub fn step(&mut self) -> TearStep<f64> {
-        let loads = TriangleLoads {
-            gradients: &self.gradients,
-            eshelby: &self.eshelby,
-        };
+        let loads = self.loads.loads(self.material[0], self.material[1]);
         self.tears
             .step(&mut self.mesh, &loads, &self.fingers, &self.junctions)
     }

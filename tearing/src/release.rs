@@ -70,7 +70,6 @@ use folio_geometry::SheetMesh;
 
 use folio_kernels::{Real, Vec3Ops, math};
 
-use crate::tears::deformation_gradient;
 
 /// What the physics says of each triangle of the sheet, indexed like its triangles.
 #[derive(Clone, Copy, Debug)]
@@ -80,6 +79,50 @@ pub struct TriangleLoads<'a, T: Real> {
     pub gradients: &'a [[T::Vec3; 3]],
     /// Triangle `k`'s Eshelby tensor $[\Sigma_{uu}, \Sigma_{uv}, \Sigma_{vv}]$.
     pub eshelby: &'a [[T; 3]],
+    /// Triangle `k`'s deformation gradient, its columns $F e_u$, $F e_v$
+    /// ([`folio_kernels::membrane::Membrane::deformation_gradient`]).
+    pub deformations: &'a [[T::Vec3; 2]],
+    /// The membranes' 2D Young's modulus $Y$ (force per sheet unit).
+    pub stretch_modulus: f64,
+    /// The membranes' Poisson's ratio $\nu$.
+    pub poisson: f64,
+}
+
+/// The buffers a [`TriangleLoads`] views, filled by the physics (for the sheet:
+/// `SheetModel::triangle_loads`) and kept from frame to frame.
+#[derive(Clone, Debug)]
+pub struct LoadBuffers<T: Real> {
+    /// See [`TriangleLoads::gradients`].
+    pub gradients: Vec<[T::Vec3; 3]>,
+    /// See [`TriangleLoads::eshelby`].
+    pub eshelby: Vec<[T; 3]>,
+    /// See [`TriangleLoads::deformations`].
+    pub deformations: Vec<[T::Vec3; 2]>,
+}
+
+impl<T: Real> Default for LoadBuffers<T> {
+    fn default() -> Self {
+        Self {
+            gradients: Vec::new(),
+            eshelby: Vec::new(),
+            deformations: Vec::new(),
+        }
+    }
+}
+
+impl<T: Real> LoadBuffers<T> {
+    /// The view of the buffers for membranes of 2D Young's modulus `stretch_modulus` and
+    /// Poisson's ratio `poisson`.
+    #[must_use]
+    pub fn loads(&self, stretch_modulus: f64, poisson: f64) -> TriangleLoads<'_, T> {
+        TriangleLoads {
+            gradients: &self.gradients,
+            eshelby: &self.eshelby,
+            deformations: &self.deformations,
+            stretch_modulus,
+            poisson,
+        }
+    }
 }
 
 /// The cone's value $\max(0, 1 - |x - p| / R)$ at pattern point `x`.
@@ -158,12 +201,11 @@ pub fn configurational_force<T: Real>(
         let (mut residual, mut f, mut area) = (T::Vec3::ZERO, [T::Vec3::ZERO; 2], T::ZERO);
         for h in mesh.fan_iter(v) {
             let k = h as usize / 3;
-            let Some(g) = loads.gradients.get(k) else {
+            let (Some(g), Some(fk)) = (loads.gradients.get(k), loads.deformations.get(k)) else {
                 continue;
             };
             residual += g[h as usize % 3];
             let a = mesh.pattern_area(k);
-            let fk = deformation_gradient(mesh, k);
             f = [f[0] + fk[0] * a, f[1] + fk[1] * a];
             area += a;
         }
@@ -221,9 +263,13 @@ mod tests {
             let w = s * s / (2.0 * y);
             let sigma = vec![[w - s, 0.0, w]; mesh.triangle_count()];
             let gradients = vec![[DVec3::ZERO; 3]; mesh.triangle_count()];
+            let deformations = vec![[DVec3::X, DVec3::Y]; mesh.triangle_count()];
             let loads = TriangleLoads {
                 gradients: &gradients,
                 eshelby: &sigma,
+                deformations: &deformations,
+                stretch_modulus: y,
+                poisson: 0.0,
             };
             let vertex = |x: f64, y: f64| {
                 mesh.pattern()

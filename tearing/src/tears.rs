@@ -248,19 +248,21 @@ impl<T: Real> Tears<T> {
                 });
                 continue;
             }
-            let gradients = loads.gradients;
             self.pulls.clear();
             let mut normal = T::Vec3::ZERO;
             for h in mesh.fan_iter(v) {
                 let t = h as usize / 3;
-                let Some(g) = gradients.get(t) else { continue };
+                let (Some(g), Some(f)) = (loads.gradients.get(t), loads.deformations.get(t))
+                else {
+                    continue;
+                };
                 let corner = h as usize % 3;
                 let [a, b, c] = mesh.triangles()[t].map(|i| mesh.positions()[i as usize]);
                 let centroid = (a + b + c) * T::from_f64(1.0 / 3.0);
                 self.pulls.push(Pull {
                     force: -g[corner],
                     toward: centroid - mesh.positions()[v as usize],
-                    gradient: deformation_gradient(mesh, t),
+                    gradient: *f,
                 });
                 normal += triangle_normal(mesh, t);
             }
@@ -456,33 +458,6 @@ fn segment_distance<T: Real>(p: [T; 2], a: [T; 2], b: [T; 2]) -> f64 {
     };
     let d = [a[0] + s * e[0] - p[0], a[1] + s * e[1] - p[1]];
     math::sqrt(d[0] * d[0] + d[1] * d[1])
-}
-
-/// The columns $F e_u$, $F e_v$ of triangle `t`'s deformation gradient
-/// $F = [x_1 - x_0,\ x_2 - x_0]\thinspace[u_1 - u_0,\ u_2 - u_0]^{-1}$ (zero for a degenerate
-/// pattern triangle).
-#[must_use]
-pub fn deformation_gradient<T: Real>(mesh: &SheetMesh<T>, t: usize) -> [T::Vec3; 2] {
-    let [i0, i1, i2] = mesh.triangles()[t];
-    let (p0, p1, p2) = (
-        mesh.pattern()[i0 as usize],
-        mesh.pattern()[i1 as usize],
-        mesh.pattern()[i2 as usize],
-    );
-    let (a, c) = (p1[0] - p0[0], p1[1] - p0[1]);
-    let (b, d) = (p2[0] - p0[0], p2[1] - p0[1]);
-    let det = a * d - b * c;
-    if det == T::ZERO {
-        return [T::Vec3::ZERO; 2];
-    }
-    let x0 = mesh.positions()[i0 as usize];
-    let (e1, e2) = (
-        mesh.positions()[i1 as usize] - x0,
-        mesh.positions()[i2 as usize] - x0,
-    );
-    let inv = T::ONE / det;
-    // Dm^{-1} = [[d, -b], [-c, a]] / det.
-    [(e1 * d - e2 * c) * inv, (e2 * a - e1 * b) * inv]
 }
 
 /// Area-weighted normal of triangle `t` (twice its 3D area times the unit normal).

@@ -21,6 +21,7 @@ use folio_kernels::membrane::Membrane;
 use folio_kernels::{Potential, Real};
 
 use super::error::TearingSheetError;
+use crate::release::LoadBuffers;
 use super::settings::SheetSettings;
 use folio_solvers::model::{Model, PotentialSet, TermVisitor};
 
@@ -117,21 +118,19 @@ impl<T: Real> SheetModel<T> {
         &self.membranes
     }
 
-    /// What the tearing step reads of every triangle at positions `x`, into the two
-    /// buffers (cleared first): the stretching gradient at its corners, and its Eshelby
-    /// tensor ([`Membrane::eshelby`]).
-    pub fn triangle_loads(
-        &self,
-        x: &[T::Vec3],
-        gradients: &mut Vec<[T::Vec3; 3]>,
-        eshelby: &mut Vec<[T; 3]>,
-    ) {
-        gradients.clear();
-        eshelby.clear();
+    /// What the tearing step reads of every triangle at positions `x`, into `buffers`
+    /// (cleared first): the stretching gradient at its corners, its Eshelby tensor
+    /// ([`Membrane::eshelby`]) and its deformation gradient.
+    pub fn triangle_loads(&self, x: &[T::Vec3], buffers: &mut LoadBuffers<T>) {
+        buffers.gradients.clear();
+        buffers.eshelby.clear();
+        buffers.deformations.clear();
         for term in self.membranes.terms() {
             let local = term.nodes.map(|i| x[i as usize]);
-            gradients.push(term.kernel.gradient(&local));
-            eshelby.push(term.kernel.eshelby(&local));
+            buffers.gradients.push(term.kernel.gradient(&local));
+            buffers.eshelby.push(term.kernel.eshelby(&local));
+            let (f0, f1) = term.kernel.deformation_gradient(&local);
+            buffers.deformations.push([f0, f1]);
         }
     }
 

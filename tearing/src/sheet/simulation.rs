@@ -14,7 +14,7 @@
 
 use alloc::vec::Vec;
 
-use crate::{Propagation, Tears, TriangleLoads};
+use crate::{LoadBuffers, Propagation, Tears};
 use folio_geometry::SheetMesh;
 use folio_geometry::sheet::ConeLayer;
 use folio_kernels::{Real, Vec3Ops};
@@ -79,8 +79,7 @@ pub struct TearingSheet<T: Real> {
     /// Every vertex the pads hold, and for each its finger and offset.
     pads: Vec<PadVertex<T>>,
     held: Vec<u32>,
-    gradients: Vec<[T::Vec3; 3]>,
-    eshelby: Vec<[T; 3]>,
+    loads: LoadBuffers<T>,
     propagations: Vec<Propagation<T>>,
     /// The mesh's topology version the model was built for.
     topology_seen: u64,
@@ -130,8 +129,7 @@ impl<T: Real> TearingSheet<T> {
             centres: Vec::new(),
             pads: Vec::new(),
             held: Vec::new(),
-            gradients: Vec::new(),
-            eshelby: Vec::new(),
+            loads: LoadBuffers::default(),
             propagations: Vec::new(),
             topology_seen: mesh.topology_version(),
             mesh,
@@ -311,10 +309,10 @@ impl<T: Real> TearingSheet<T> {
                 } else {
                     &[]
                 };
-                let loads = TriangleLoads {
-                    gradients: &self.gradients,
-                    eshelby: &self.eshelby,
-                };
+                let loads = self.loads.loads(
+                    self.settings.stretch_modulus.to_f64(),
+                    self.settings.poisson.to_f64(),
+                );
                 let step = self
                     .tears
                     .step(&mut self.mesh, &loads, &self.centres, junctions);
@@ -338,14 +336,11 @@ impl<T: Real> TearingSheet<T> {
         report
     }
 
-    /// The in-plane stretching gradient of every triangle at its corners, and its Eshelby
-    /// tensor.
+    /// The in-plane stretching gradient of every triangle at its corners, its Eshelby
+    /// tensor and its deformation gradient.
     fn update_gradients(&mut self) {
-        self.model.triangle_loads(
-            self.mesh.positions(),
-            &mut self.gradients,
-            &mut self.eshelby,
-        );
+        self.model
+            .triangle_loads(self.mesh.positions(), &mut self.loads);
     }
 
     /// The model after an edit of the mesh: rebuilt (analysis at the next step) when the
