@@ -56,7 +56,11 @@
 //! is the same reading taken on the tip's own triangles: their nodal forces, which scale with
 //! the cell size. For a slightly mixed mode, $J$'s direction is $-2K_{II}/K_I$ off the
 //! crack's line, the kink of the maximum hoop stress to first order; for a strongly mixed
-//! mode it turns less than a real tear would.
+//! mode it turns less than a real tear would, and its component across the crack also
+//! counts the lips. So at a slit (a tear's tip, a notch) the tearing step takes the
+//! direction from the mode mixity read over the same disk ([`crate::mixity`]) and the
+//! release rate from $J$'s component along the crack; $t = J/|J|$ serves where no crack is
+//! yet (a border).
 //!
 //! **Needs a membrane-only in-plane response.** The paper's quadratic hinge (Bergou et al.)
 //! also resists in-plane deformation that is not affine; at a tip that stiffness grows on
@@ -69,7 +73,6 @@ use alloc::vec::Vec;
 use folio_geometry::SheetMesh;
 
 use folio_kernels::{Real, Vec3Ops, math};
-
 
 /// What the physics says of each triangle of the sheet, indexed like its triangles.
 #[derive(Clone, Copy, Debug)]

@@ -30,13 +30,19 @@ use crate::candidates::{Candidate, Kind, collect};
 use crate::detail::{Raster, detail_path};
 use crate::error::TearingError;
 use crate::fiber::FiberTexture;
+use crate::mixity::{kink_angle, mode_mixity};
 use crate::release::{TriangleLoads, cone_weights, configurational_force};
 use crate::settings::{Estimator, TearSettings};
 use crate::split::{Pull, Split, split_forces, unit};
 use crate::texture::{AlphaPair, Side};
 
-/// $E_r = |J| / e$ and $t = J / |J|$ at vertex `v` over the disk of the settings
-/// ([`crate::release`]); zero for no release.
+/// The release rate and direction at vertex `v` over the disk of the settings, zero for no
+/// release ([`crate::release`], [`crate::mixity`]):
+/// - at a slit (a tear's tip, or a notch: a pattern angle of at least $1.75\pi$), the crack
+///   runs along $d$, the bisector of the slit pointing into the sheet; the tear kinks from
+///   $d$ by the maximum hoop stress's $\theta_c$ for the disk's $K_{II}/K_I$, and releases
+///   $E_r = J \cdot d / e$, the part of $J$ that does not count the lips;
+/// - elsewhere (a border a tear would start from) $t = J / |J|$ and $E_r = |J| / e$.
 fn disk_load<T: Real>(
     mesh: &SheetMesh<T>,
     loads: &TriangleLoads<'_, T>,
@@ -50,10 +56,46 @@ fn disk_load<T: Real>(
     if !(norm > 0.0 && norm.is_finite()) {
         return (T::ZERO, [T::ZERO; 2]);
     }
+    let to_t = |x: [f64; 2]| [T::from_f64(x[0]), T::from_f64(x[1])];
+    if let Some(d) = slit_direction(mesh, v) {
+        let p = mesh.pattern()[v as usize];
+        let tip = [p[0].to_f64(), p[1].to_f64()];
+        let along = j[0] * d[0] + j[1] * d[1];
+        if let Some(rho) = mode_mixity(mesh, loads, tip, d, weights)
+            && along > 0.0
+        {
+            let (sin, cos) = (math::sin(kink_angle(rho)), math::cos(kink_angle(rho)));
+            let t = [cos * d[0] - sin * d[1], sin * d[0] + cos * d[1]];
+            return (T::from_f64(along / settings.thickness), to_t(t));
+        }
+        return (T::ZERO, [T::ZERO; 2]);
+    }
     (
         T::from_f64(norm / settings.thickness),
-        [T::from_f64(j[0] / norm), T::from_f64(j[1] / norm)],
+        to_t([j[0] / norm, j[1] / norm]),
     )
+}
+
+/// At a boundary vertex whose pattern angle is at least $1.75\pi$ (a slit), the unit
+/// pattern direction pointing into the sheet along the slit's bisector:
+/// $-(\hat a + \hat b) / |\hat a + \hat b|$ for $\hat a$, $\hat b$ the directions to its two
+/// boundary neighbours (both point back along the lips).
+fn slit_direction<T: Real>(mesh: &SheetMesh<T>, v: u32) -> Option<[f64; 2]> {
+    if mesh.pattern_angle(v).to_f64() < 1.75 * core::f64::consts::PI {
+        return None;
+    }
+    let (next, previous) = mesh.boundary_neighbours(v)?;
+    let p = mesh.pattern()[v as usize];
+    let toward = |w: u32| {
+        let q = mesh.pattern()[w as usize];
+        let d = [(q[0] - p[0]).to_f64(), (q[1] - p[1]).to_f64()];
+        let n = math::sqrt(d[0] * d[0] + d[1] * d[1]);
+        [d[0] / n, d[1] / n]
+    };
+    let (a, b) = (toward(next), toward(previous));
+    let sum = [-(a[0] + b[0]), -(a[1] + b[1])];
+    let n = math::sqrt(sum[0] * sum[0] + sum[1] * sum[1]);
+    (n > 1e-9 && n.is_finite()).then(|| [sum[0] / n, sum[1] / n])
 }
 
 /// One tear: its path in the pattern, its tip, and its alpha textures.
@@ -116,8 +158,8 @@ pub struct TearStep<T> {
     pub candidates: usize,
     /// The propagation, if one happened.
     pub propagation: Option<Propagation<T>>,
-    /// A propagation the Griffith criterion allowed but the mesh refused (the sheet is
-    /// unchanged; reported, not fatal).
+    /// The last propagation the Griffith criterion allowed but the mesh refused (the sheet
+    /// is unchanged by it; reported, not fatal; the next point by ratio was tried then).
     pub refused: Option<SheetError>,
 }
 
@@ -252,8 +294,7 @@ impl<T: Real> Tears<T> {
             let mut normal = T::Vec3::ZERO;
             for h in mesh.fan_iter(v) {
                 let t = h as usize / 3;
-                let (Some(g), Some(f)) = (loads.gradients.get(t), loads.deformations.get(t))
-                else {
+                let (Some(g), Some(f)) = (loads.gradients.get(t), loads.deformations.get(t)) else {
                     continue;
                 };
                 let corner = h as usize % 3;
@@ -288,7 +329,9 @@ impl<T: Real> Tears<T> {
     }
 
     /// Propagates the evaluation of the last [`Tears::evaluate`] that passes the Griffith
-    /// criterion $E_r \ge E_f$ (eq. 1) by the largest ratio, if any (module docs).
+    /// criterion $E_r \ge E_f$ (eq. 1) by the largest ratio (module docs). When the mesh
+    /// refuses that one (the sheet is then unchanged), the next one by ratio is tried, and
+    /// so on: a refused point does not hold back the others.
     pub fn propagate(&mut self, mesh: &mut SheetMesh<T>) -> TearStep<T> {
         let mut step = TearStep {
             candidates: self.evaluations.len(),
@@ -296,16 +339,43 @@ impl<T: Real> Tears<T> {
             refused: None,
         };
         let tiny = T::from_f64(1e-30);
-        let best = self
-            .evaluations
-            .iter()
-            .filter(|e| e.inward && e.release_rate >= e.fracture_energy)
-            .map(|e| (e.release_rate / (e.fracture_energy + tiny), *e))
-            .fold(None, |best: Option<(T, Evaluation<T>)>, x| match best {
-                Some(b) if b.0 >= x.0 => Some(b),
-                _ => Some(x),
-            });
-        let Some((_, e)) = best else { return step };
+        // Walk the passing evaluations by falling ratio, ties by index, without sorting.
+        let mut above: Option<(T, usize)> = None;
+        loop {
+            let next = self
+                .evaluations
+                .iter()
+                .enumerate()
+                .filter(|(_, e)| e.inward && e.release_rate >= e.fracture_energy)
+                .map(|(i, e)| (e.release_rate / (e.fracture_energy + tiny), i))
+                .filter(|&(r, i)| above.is_none_or(|(ar, ai)| r < ar || (r == ar && i > ai)))
+                .fold(None, |best: Option<(T, usize)>, x| match best {
+                    Some(b) if b.0 >= x.0 => Some(b),
+                    _ => Some(x),
+                });
+            let Some((ratio, index)) = next else {
+                return step;
+            };
+            above = Some((ratio, index));
+            match self.advance_evaluation(mesh, self.evaluations[index]) {
+                Ok(propagation) => {
+                    step.propagation = Some(propagation);
+                    return step;
+                }
+                Err(err) => step.refused = Some(err),
+            }
+        }
+    }
+
+    /// The propagation of evaluation `e`: the mesh edit, then the tear's path and textures.
+    ///
+    /// # Errors
+    /// The edit's error; the sheet and the tears are unchanged then.
+    fn advance_evaluation(
+        &mut self,
+        mesh: &mut SheetMesh<T>,
+        e: Evaluation<T>,
+    ) -> Result<Propagation<T>, SheetError> {
         let v = e.candidate.vertex;
         let from = mesh.pattern()[v as usize];
         let tear = self.tears.iter().position(|t| t.tip == Some(v));
@@ -319,20 +389,14 @@ impl<T: Real> Tears<T> {
             (self.settings.speed * e.release_rate.to_f64())
                 .clamp(self.settings.min_step, self.settings.max_step),
         );
-        let outcome: Advance = match advance(
+        let outcome: Advance = advance(
             mesh,
             v,
             t,
             length,
             straight,
             T::from_f64(self.settings.snap),
-        ) {
-            Ok(a) => a,
-            Err(err) => {
-                step.refused = Some(err);
-                return step;
-            }
-        };
+        )?;
         let to = match outcome.tip {
             Some(q) => mesh.pattern()[q as usize],
             None => from_cut_end(mesh, &outcome, from),
@@ -342,7 +406,7 @@ impl<T: Real> Tears<T> {
             None => self.start_tear(from, t),
         };
         self.extend(index, from, to, outcome.tip);
-        step.propagation = Some(Propagation {
+        Ok(Propagation {
             tear: index,
             kind: e.candidate.kind,
             from,
@@ -350,8 +414,7 @@ impl<T: Real> Tears<T> {
             release_rate: e.release_rate,
             fracture_energy: e.fracture_energy,
             edit: outcome.edit,
-        });
-        step
+        })
     }
 
     /// [`Tears::evaluate`] then [`Tears::propagate`].

@@ -21,8 +21,8 @@ use folio_kernels::membrane::Membrane;
 use folio_kernels::{Potential, Real};
 
 use super::error::TearingSheetError;
-use crate::release::LoadBuffers;
 use super::settings::SheetSettings;
+use crate::release::LoadBuffers;
 use folio_solvers::model::{Model, PotentialSet, TermVisitor};
 
 /// The sheet's terms, masses and held vertices (module docs).
