@@ -5,7 +5,9 @@
 //! - **fingers**: a finger on the boundary is itself a candidate; a finger inside the
 //!   sheet gives the boundary vertex nearest to it in the pattern (a tear cannot start
 //!   inside the sheet in this model: the seed puts forcing an object through the paper out of
-//!   scope, Sec. 7.1);
+//!   scope, Sec. 7.1). Vertices marked `prescribed` (a finger's pad, for an estimator that
+//!   leaves them out) are passed over for the nearest boundary vertex that is not: the
+//!   edge of the grip;
 //! - **junction points** where flat and curved regions meet the boundary
 //!   ([`folio_geometry::sheet::ConeLayer`]);
 //! - **inward angles**: boundary vertices whose pattern angle exceeds $\pi$ by more than
@@ -42,13 +44,16 @@ pub struct Candidate {
 }
 
 /// Collects the candidates of `mesh` into `out` (module docs): `tips` of tears, `fingers`
-/// (vertices held by fingers), `junctions`, then inward angles beyond `inward_angle`
-/// radians over $\pi$; at most `limit`.
+/// (vertices held by fingers; per vertex, `prescribed` marks those to pass over, empty for
+/// none), `junctions`, then inward angles beyond `inward_angle` radians over $\pi$; at
+/// most `limit`.
+#[allow(clippy::too_many_arguments)]
 pub fn collect<T: Real>(
     out: &mut Vec<Candidate>,
     mesh: &SheetMesh<T>,
     tips: &[u32],
     fingers: &[u32],
+    prescribed: &[bool],
     junctions: &[u32],
     inward_angle: T,
     limit: usize,
@@ -64,7 +69,7 @@ pub fn collect<T: Real>(
         add(out, v, Kind::Tip);
     }
     for &f in fingers {
-        if let Some(v) = nearest_boundary(mesh, f) {
+        if let Some(v) = nearest_boundary(mesh, f, prescribed) {
             add(out, v, Kind::Finger);
         }
     }
@@ -79,16 +84,18 @@ pub fn collect<T: Real>(
     }
 }
 
-/// `f` if it is on the boundary, else the boundary vertex nearest to it in the pattern.
+/// `f` if it is on the boundary and not `prescribed`, else the boundary vertex nearest to
+/// it in the pattern that is not `prescribed` (per vertex; empty for none).
 #[must_use]
-pub fn nearest_boundary<T: Real>(mesh: &SheetMesh<T>, f: u32) -> Option<u32> {
+pub fn nearest_boundary<T: Real>(mesh: &SheetMesh<T>, f: u32, prescribed: &[bool]) -> Option<u32> {
     let p = *mesh.pattern().get(f as usize)?;
-    if mesh.is_boundary(f) {
+    let free = |v: u32| !prescribed.get(v as usize).copied().unwrap_or(false);
+    if mesh.is_boundary(f) && free(f) {
         return Some(f);
     }
     let mut best: Option<(T, u32)> = None;
     for v in 0..mesh.vertex_count() as u32 {
-        if !mesh.is_boundary(v) {
+        if !mesh.is_boundary(v) || !free(v) {
             continue;
         }
         let q = mesh.pattern()[v as usize];
@@ -98,4 +105,27 @@ pub fn nearest_boundary<T: Real>(mesh: &SheetMesh<T>, f: u32) -> Option<u32> {
         }
     }
     best.map(|(_, v)| v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A finger on the border is its own candidate, unless its vertex is held (a pad):
+    /// then the nearest free border vertex, the edge of the grip.
+    #[test]
+    fn a_held_finger_gives_the_edge_of_its_grip() {
+        let mesh = SheetMesh::<f64>::rectangle(4.0, 2.0, 4, 2).unwrap();
+        // Vertex i + 5 j is at (i, j).
+        assert_eq!(nearest_boundary(&mesh, 2, &[]), Some(2));
+        let mut held = alloc::vec![false; mesh.vertex_count()];
+        held[2] = true;
+        held[3] = true;
+        assert_eq!(nearest_boundary(&mesh, 2, &held), Some(1));
+        assert_eq!(
+            nearest_boundary(&mesh, 7, &[]),
+            Some(2),
+            "inside: the nearest border"
+        );
+    }
 }

@@ -85,6 +85,9 @@ pub struct TriangleLoads<'a, T: Real> {
     /// Triangle `k`'s deformation gradient, its columns $F e_u$, $F e_v$
     /// ([`folio_kernels::membrane::Membrane::deformation_gradient`]).
     pub deformations: &'a [[T::Vec3; 2]],
+    /// Per vertex, `true` where the motion is prescribed (a finger's pad): its net force
+    /// is a reaction, not a load, and the disk leaves it out (empty: none).
+    pub prescribed: &'a [bool],
     /// The membranes' 2D Young's modulus $Y$ (force per sheet unit).
     pub stretch_modulus: f64,
     /// The membranes' Poisson's ratio $\nu$.
@@ -101,6 +104,8 @@ pub struct LoadBuffers<T: Real> {
     pub eshelby: Vec<[T; 3]>,
     /// See [`TriangleLoads::deformations`].
     pub deformations: Vec<[T::Vec3; 2]>,
+    /// See [`TriangleLoads::prescribed`].
+    pub prescribed: Vec<bool>,
 }
 
 impl<T: Real> Default for LoadBuffers<T> {
@@ -109,6 +114,7 @@ impl<T: Real> Default for LoadBuffers<T> {
             gradients: Vec::new(),
             eshelby: Vec::new(),
             deformations: Vec::new(),
+            prescribed: Vec::new(),
         }
     }
 }
@@ -122,6 +128,7 @@ impl<T: Real> LoadBuffers<T> {
             gradients: &self.gradients,
             eshelby: &self.eshelby,
             deformations: &self.deformations,
+            prescribed: &self.prescribed,
             stretch_modulus,
             poisson,
         }
@@ -141,10 +148,17 @@ fn pattern_at<T: Real>(mesh: &SheetMesh<T>, v: u32) -> [f64; 2] {
 }
 
 /// The weights $q_i$ of every vertex for the point `v` (module docs) into `q`: the cone,
-/// except on stretches of the boundary other than the one through `v`. A border or a tear
-/// that merely passes within $R$ is not the tear being measured; the cone is cut to zero
-/// there, which puts the domain's edge between them.
-pub fn cone_weights<T: Real>(mesh: &SheetMesh<T>, v: u32, radius: f64, q: &mut Vec<f64>) {
+/// except on stretches of the boundary other than the one through `v`, and on the vertices
+/// `prescribed` (a finger's pad, whose net force is the finger's reaction). A border or a
+/// tear that merely passes within $R$ is not the tear being measured, nor is a grip; the
+/// cone is cut to zero there, which puts the domain's edge between them.
+pub fn cone_weights<T: Real>(
+    mesh: &SheetMesh<T>,
+    v: u32,
+    radius: f64,
+    prescribed: &[bool],
+    q: &mut Vec<f64>,
+) {
     let p = pattern_at(mesh, v);
     q.clear();
     q.extend((0..mesh.vertex_count() as u32).map(|i| {
@@ -156,6 +170,11 @@ pub fn cone_weights<T: Real>(mesh: &SheetMesh<T>, v: u32, radius: f64, q: &mut V
     }));
     if !mesh.is_boundary(v) {
         q[v as usize] = 1.0;
+        for (w, &fixed) in q.iter_mut().zip(prescribed) {
+            if fixed {
+                *w = 0.0;
+            }
+        }
         return;
     }
     // Walk the boundary both ways from v while within the disk.
@@ -170,6 +189,11 @@ pub fn cone_weights<T: Real>(mesh: &SheetMesh<T>, v: u32, radius: f64, q: &mut V
             }
             q[step as usize] = w;
             at = step;
+        }
+    }
+    for (w, &fixed) in q.iter_mut().zip(prescribed) {
+        if fixed {
+            *w = 0.0;
         }
     }
 }
@@ -271,6 +295,7 @@ mod tests {
                 gradients: &gradients,
                 eshelby: &sigma,
                 deformations: &deformations,
+                prescribed: &[],
                 stretch_modulus: y,
                 poisson: 0.0,
             };
@@ -281,13 +306,13 @@ mod tests {
                     .unwrap() as u32
             };
             let mut q = Vec::new();
-            cone_weights(&mesh, vertex(6.0, 4.0), 2.0, &mut q);
+            cone_weights(&mesh, vertex(6.0, 4.0), 2.0, &[], &mut q);
             let inside = configurational_force(&mesh, &loads, &q);
             assert!(
                 inside[0].abs() < 1e-15 && inside[1].abs() < 1e-15,
                 "{inside:?}"
             );
-            cone_weights(&mesh, vertex(5.0, 0.0), 2.0, &mut q);
+            cone_weights(&mesh, vertex(5.0, 0.0), 2.0, &[], &mut q);
             let border = configurational_force(&mesh, &loads, &q);
             assert!(border[0].abs() < 1e-15, "{border:?}");
             assert!((border[1] - w * 2.0).abs() < 1e-12 * w, "{border:?}");
@@ -295,7 +320,8 @@ mod tests {
     }
 
     /// The walk along the boundary from the point: round a corner within the disk, but not
-    /// across the sheet to another stretch of border that the disk reaches.
+    /// across the sheet to another stretch of border that the disk reaches; a held vertex
+    /// is left out.
     #[test]
     fn the_weights_follow_the_point_s_own_boundary() {
         let mesh = SheetMesh::<f64>::rectangle(12.0, 2.0, 12, 2).unwrap();
@@ -306,7 +332,7 @@ mod tests {
                 .unwrap()
         };
         let mut q = Vec::new();
-        cone_weights(&mesh, vertex(5.0, 0.0) as u32, 3.0, &mut q);
+        cone_weights(&mesh, vertex(5.0, 0.0) as u32, 3.0, &[], &mut q);
         assert_eq!(
             q[vertex(5.0, 2.0)],
             0.0,
@@ -317,7 +343,12 @@ mod tests {
             (q[vertex(5.0, 1.0)] - 2.0 / 3.0).abs() < 1e-12,
             "interior: the cone"
         );
-        cone_weights(&mesh, vertex(1.0, 0.0) as u32, 3.0, &mut q);
+        cone_weights(&mesh, vertex(1.0, 0.0) as u32, 3.0, &[], &mut q);
         assert!(q[vertex(0.0, 1.0)] > 0.0, "round the corner");
+        let mut prescribed = vec![false; mesh.vertex_count()];
+        prescribed[vertex(2.0, 1.0)] = true;
+        cone_weights(&mesh, vertex(1.0, 0.0) as u32, 3.0, &prescribed, &mut q);
+        assert_eq!(q[vertex(2.0, 1.0)], 0.0, "a held vertex is out of the disk");
+        assert!(q[vertex(1.0, 1.0)] > 0.0);
     }
 }

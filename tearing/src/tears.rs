@@ -39,7 +39,8 @@ use crate::texture::{AlphaPair, Side};
 /// The release rate and direction at vertex `v` over the disk of the settings, zero for no
 /// release ([`crate::release`], [`crate::mixity`]):
 /// - at a slit (a tear's tip, or a notch: a pattern angle of at least $1.75\pi$), the crack
-///   runs along $d$, the bisector of the slit pointing into the sheet; the tear kinks from
+///   runs along $d$, the bisector of the slit pointing into the sheet, its lips read at
+///   half the disk's radius; the tear kinks from
 ///   $d$ by the maximum hoop stress's $\theta_c$ for the disk's $K_{II}/K_I$, and releases
 ///   $E_r = J \cdot d / e$, the part of $J$ that does not count the lips;
 /// - elsewhere (a border a tear would start from) $t = J / |J|$ and $E_r = |J| / e$.
@@ -50,14 +51,14 @@ fn disk_load<T: Real>(
     settings: &TearSettings,
     weights: &mut Vec<f64>,
 ) -> (T, [T; 2]) {
-    cone_weights(mesh, v, settings.disk_radius, weights);
+    cone_weights(mesh, v, settings.disk_radius, loads.prescribed, weights);
     let j = configurational_force(mesh, loads, weights);
     let norm = math::sqrt(j[0] * j[0] + j[1] * j[1]);
     if !(norm > 0.0 && norm.is_finite()) {
         return (T::ZERO, [T::ZERO; 2]);
     }
     let to_t = |x: [f64; 2]| [T::from_f64(x[0]), T::from_f64(x[1])];
-    if let Some(d) = slit_direction(mesh, v) {
+    if let Some(d) = slit_direction(mesh, v, 0.5 * settings.disk_radius) {
         let p = mesh.pattern()[v as usize];
         let tip = [p[0].to_f64(), p[1].to_f64()];
         let along = j[0] * d[0] + j[1] * d[1];
@@ -78,22 +79,41 @@ fn disk_load<T: Real>(
 
 /// At a boundary vertex whose pattern angle is at least $1.75\pi$ (a slit), the unit
 /// pattern direction pointing into the sheet along the slit's bisector:
-/// $-(\hat a + \hat b) / |\hat a + \hat b|$ for $\hat a$, $\hat b$ the directions to its two
-/// boundary neighbours (both point back along the lips).
-fn slit_direction<T: Real>(mesh: &SheetMesh<T>, v: u32) -> Option<[f64; 2]> {
+/// $-(\hat a + \hat b) / |\hat a + \hat b|$ for $\hat a$, $\hat b$ the directions to the
+/// points where the two lips leave the distance `reach` (walking the boundary both ways;
+/// the last point of a lip that ends sooner), so that a short last step of the tear does not
+/// turn the crack's frame.
+fn slit_direction<T: Real>(mesh: &SheetMesh<T>, v: u32, reach: f64) -> Option<[f64; 2]> {
     if mesh.pattern_angle(v).to_f64() < 1.75 * core::f64::consts::PI {
         return None;
     }
-    let (next, previous) = mesh.boundary_neighbours(v)?;
     let p = mesh.pattern()[v as usize];
-    let toward = |w: u32| {
+    let offset = |w: u32| {
         let q = mesh.pattern()[w as usize];
-        let d = [(q[0] - p[0]).to_f64(), (q[1] - p[1]).to_f64()];
-        let n = math::sqrt(d[0] * d[0] + d[1] * d[1]);
-        [d[0] / n, d[1] / n]
+        [(q[0] - p[0]).to_f64(), (q[1] - p[1]).to_f64()]
     };
-    let (a, b) = (toward(next), toward(previous));
-    let sum = [-(a[0] + b[0]), -(a[1] + b[1])];
+    let mut sum = [0.0; 2];
+    for forward in [true, false] {
+        let mut at = v;
+        let mut d = [0.0; 2];
+        // At most as many steps as there are vertices (a boundary loop ends the walk).
+        for _ in 0..mesh.vertex_count() {
+            let (next, previous) = mesh.boundary_neighbours(at)?;
+            at = if forward { next } else { previous };
+            if at == v {
+                break;
+            }
+            d = offset(at);
+            if d[0] * d[0] + d[1] * d[1] >= reach * reach {
+                break;
+            }
+        }
+        let n = math::sqrt(d[0] * d[0] + d[1] * d[1]);
+        if n == 0.0 || !n.is_finite() {
+            return None;
+        }
+        sum = [sum[0] - d[0] / n, sum[1] - d[1] / n];
+    }
     let n = math::sqrt(sum[0] * sum[0] + sum[1] * sum[1]);
     (n > 1e-9 && n.is_finite()).then(|| [sum[0] / n, sum[1] / n])
 }
@@ -267,6 +287,10 @@ impl<T: Real> Tears<T> {
             mesh,
             &self.tip_buffer,
             fingers,
+            match self.settings.estimator {
+                Estimator::Disk => loads.prescribed,
+                Estimator::Split => &[],
+            },
             junctions,
             T::from_f64(self.settings.inward_angle),
             self.settings.max_candidates,
@@ -277,6 +301,19 @@ impl<T: Real> Tears<T> {
             let p = mesh.pattern()[v as usize];
             let fracture_energy = self.fracture_energy(p, candidate.kind == Kind::Tip);
             if self.settings.estimator == Estimator::Disk {
+                // A point within the disk of a tip other than its own is in that tip's
+                // field: its J is mostly the tip's, and a kink a step behind a tip would
+                // start a branch there.
+                let radius2 = self.settings.disk_radius * self.settings.disk_radius;
+                let near_tip = candidate.kind != Kind::Tip
+                    && self.tip_buffer.iter().any(|&tip| {
+                        let q = mesh.pattern()[tip as usize];
+                        let d = [(q[0] - p[0]).to_f64(), (q[1] - p[1]).to_f64()];
+                        d[0] * d[0] + d[1] * d[1] < radius2
+                    });
+                if near_tip {
+                    continue;
+                }
                 let (release_rate, direction) =
                     disk_load(mesh, loads, v, &self.settings, &mut self.weights);
                 let inward = release_rate > T::ZERO && wedge(mesh, v, direction).is_some();

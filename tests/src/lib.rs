@@ -12,6 +12,7 @@ pub mod dense_kkt;
 pub mod elastica;
 pub mod fuzz;
 pub mod models;
+pub mod paths;
 pub mod terms;
 
 use folio_kernels::real::{Mat3Ops, Vec3Ops};

@@ -8,6 +8,7 @@
 use folio_geometry::SheetMesh;
 use folio_tearing::Kind;
 use folio_tearing::sheet::{FrameReport, SheetSettings, TearingSheet, TearingSheetError};
+use folio_tests::paths::{distance_to_path, length as path_length, off_hyperbola};
 use glam::DVec3;
 
 /// Rows and columns of the default 12 x 9 sheet (8 x 6 quads): vertex `i + 9 j` is at
@@ -232,12 +233,7 @@ fn asymmetric_pulls_follow_the_hyperbola() {
     let tears = sheet.tears().tears();
     assert!(!tears.is_empty(), "no tear");
     let path = &tears[0].path;
-    let focal = |p: [f64; 2]| dist(p, a) - dist(p, b);
-    let d0 = focal(path[0]);
-    let worst = path
-        .iter()
-        .map(|&p| (focal(p) - d0).abs())
-        .fold(0.0, folio_tests::worst);
+    let worst = off_hyperbola(path, a, b);
     let length = tear_length(&sheet);
     println!(
         "asymmetric: tear length {length:.3}, {} points, max ||pA|-|pB| - d0| = {worst:.4} ({:.2} % of the length)",
@@ -245,7 +241,12 @@ fn asymmetric_pulls_follow_the_hyperbola() {
         100.0 * worst / length
     );
     for p in path {
-        println!("  ({:.3}, {:.3})  |pA|-|pB| = {:.4}", p[0], p[1], focal(*p));
+        println!(
+            "  ({:.3}, {:.3})  |pA|-|pB| = {:.4}",
+            p[0],
+            p[1],
+            dist(*p, a) - dist(*p, b)
+        );
     }
     assert!(length >= 3.0, "the tear stopped at {length}");
     assert!(
@@ -665,26 +666,6 @@ fn flattening_tears_near_a_finger() {
         across >= 30.0,
         "the tear runs along the border: {across} deg"
     );
-}
-
-/// Distance from `p` to the polyline `path`.
-fn distance_to_path(p: [f64; 2], path: &[[f64; 2]]) -> f64 {
-    path.windows(2)
-        .map(|w| {
-            let e = [w[1][0] - w[0][0], w[1][1] - w[0][1]];
-            let len2 = e[0] * e[0] + e[1] * e[1];
-            let s = if len2 > 0.0 {
-                (((p[0] - w[0][0]) * e[0] + (p[1] - w[0][1]) * e[1]) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            dist(p, [w[0][0] + s * e[0], w[0][1] + s * e[1]])
-        })
-        .fold(dist(p, path[0]), folio_tests::least)
-}
-
-fn path_length(path: &[[f64; 2]]) -> f64 {
-    path.windows(2).map(|w| dist(w[0], w[1])).sum()
 }
 
 /// Seed Fig. 17 and Sec. 5.3 ("the tear could thus even branch"): fingers that change

@@ -120,11 +120,13 @@ impl<T: Real> SheetModel<T> {
 
     /// What the tearing step reads of every triangle at positions `x`, into `buffers`
     /// (cleared first): the stretching gradient at its corners, its Eshelby tensor
-    /// ([`Membrane::eshelby`]) and its deformation gradient.
+    /// ([`Membrane::eshelby`]) and its deformation gradient; and which vertices are held.
     pub fn triangle_loads(&self, x: &[T::Vec3], buffers: &mut LoadBuffers<T>) {
         buffers.gradients.clear();
         buffers.eshelby.clear();
         buffers.deformations.clear();
+        buffers.prescribed.clear();
+        buffers.prescribed.extend_from_slice(&self.held);
         for term in self.membranes.terms() {
             let local = term.nodes.map(|i| x[i as usize]);
             buffers.gradients.push(term.kernel.gradient(&local));
