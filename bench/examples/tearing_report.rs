@@ -25,8 +25,8 @@ use core::hint::black_box;
 use std::time::Instant;
 
 use folio_bench::book::{quantile, worst};
-use folio_bench::tearing::{ASYMMETRIC, ConeInputs, Scene, TearInputs};
-use folio_tearing::sheet::SheetEffects;
+use folio_bench::tearing::{ASYMMETRIC, ConeInputs, Scene, TearInputs, sized_settings};
+use folio_tearing::sheet::{SheetEffects, SheetSettings};
 
 /// Frames played per configuration.
 const FRAMES: usize = 240;
@@ -81,7 +81,18 @@ impl Times {
 
 /// One play of the scenario with `effects`; the parts timed on copies when `parts`.
 fn play(effects: SheetEffects, parts: bool) -> (Events, Times) {
-    let mut scene = Scene::notched(effects, ASYMMETRIC);
+    play_with(
+        SheetSettings {
+            effects,
+            ..SheetSettings::default()
+        },
+        parts,
+    )
+}
+
+/// One play of the scenario on the sheet of `settings`; the parts timed when `parts`.
+fn play_with(settings: SheetSettings<f64>, parts: bool) -> (Events, Times) {
+    let mut scene = Scene::notched_with(settings, ASYMMETRIC);
     let (mut ev, mut tm) = (Events::default(), Times::default());
     let mut loads = folio_tearing::LoadBuffers::default();
     for frame in 0..FRAMES {
@@ -351,5 +362,45 @@ fn main() {
             },
             p99s.join(", "),
         );
+    }
+    sizes();
+}
+
+/// The whole frame (every effect) at three mesh sizes, with the seed's split and with the
+/// disk estimator (hinges counting folds), the same scenario.
+fn sizes() {
+    println!();
+    println!(
+        "Whole frames (every effect) at three mesh sizes, {FRAMES} frames, each frame's \
+         fastest of {PLAYS} plays:"
+    );
+    println!();
+    println!(
+        "| quads | triangles at start | estimator | median ms | p99 ms | max ms | propagations | analyses | first tear length | solver refusals |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    for n in [8, 16, 32] {
+        for disk in [false, true] {
+            let settings = sized_settings(n, disk);
+            let mut config = Config::new("sizes");
+            for _ in 0..PLAYS {
+                config.add(play_with(settings, false));
+            }
+            let s = &config.fastest.step;
+            println!(
+                "| {n} x {} | {} | {} | {:.3} | {:.3} | {:.3} | {} | {} | {:.3} | {} |",
+                3 * n / 4,
+                4 * n * (3 * n / 4) / 2,
+                if disk { "disk" } else { "split" },
+                ms(s, 0.5),
+                ms(s, 0.99),
+                max_ms(s),
+                config.total(0),
+                config.total(1),
+                f64::from_bits(config.events.tear_length_bits),
+                config.events.failed,
+            );
+            assert!(config.deterministic, "{n}: plays differed");
+        }
     }
 }

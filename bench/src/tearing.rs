@@ -11,7 +11,8 @@
 use folio_geometry::SheetMesh;
 use folio_geometry::sheet::{ConeLayer, ConeSettings};
 use folio_kernels::Real;
-use folio_tearing::sheet::{FrameReport, SheetEffects, SheetSettings, TearingSheet};
+use folio_tearing::Estimator;
+use folio_tearing::sheet::{FrameReport, HingeBending, SheetEffects, SheetSettings, TearingSheet};
 use folio_tearing::{LoadBuffers, TearStep, Tears};
 
 /// The 3D vector type of `f64`.
@@ -45,16 +46,33 @@ impl Scene {
     /// On a sheet or grab the fixed scenario never produces (a bench harness).
     #[must_use]
     pub fn notched(effects: SheetEffects, grabs: [[f64; 2]; 2]) -> Self {
-        let settings = SheetSettings {
-            effects,
-            ..SheetSettings::default()
-        };
+        Self::notched_with(
+            SheetSettings {
+                effects,
+                ..SheetSettings::default()
+            },
+            grabs,
+        )
+    }
+
+    /// The sheet of `settings` (any mesh size) with the notch of [`Scene::notched`], a slit
+    /// up the middle column from the bottom border, $W/8$ deep (1.5 on the default sheet),
+    /// grabbed at `grabs`.
+    ///
+    /// # Panics
+    /// As [`Scene::notched`]; for settings the sheet refuses.
+    #[must_use]
+    pub fn notched_with(settings: SheetSettings<f64>, grabs: [[f64; 2]; 2]) -> Self {
         let columns = settings.nx as u32 + 1;
         let vertex = |i: u32, j: u32| i + columns * j;
         let mut mesh =
             SheetMesh::rectangle(settings.width, settings.height, settings.nx, settings.ny)
                 .expect("mesh");
-        mesh.cut_edge(vertex(4, 0), vertex(4, 1)).expect("slit");
+        let middle = settings.nx as u32 / 2;
+        for j in 0..(settings.nx as u32 / 8).max(1) {
+            mesh.cut_edge(vertex(middle, j), vertex(middle, j + 1))
+                .expect("slit");
+        }
         let mut sheet = TearingSheet::with_mesh(mesh, settings).expect("sheet");
         let mut pulls = Vec::new();
         for (at, sign) in grabs.into_iter().zip([-1.0, 1.0]) {
@@ -99,6 +117,22 @@ impl Scene {
                 .sum()
         })
     }
+}
+
+/// The default sheet on `n` x `3n/4` quads, every effect, with the disk estimator and
+/// hinges counting folds when `disk`, the seed's split otherwise.
+#[must_use]
+pub fn sized_settings(n: usize, disk: bool) -> SheetSettings<f64> {
+    let mut settings = SheetSettings {
+        nx: n,
+        ny: 3 * n / 4,
+        ..SheetSettings::default()
+    };
+    if disk {
+        settings.tearing.estimator = Estimator::Disk;
+        settings.hinge_bending = HingeBending::Folds;
+    }
+    settings
 }
 
 /// Copies of everything one tearing step of a sheet reads and writes.
