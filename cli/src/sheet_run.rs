@@ -156,7 +156,7 @@ pub fn run(
             .collect();
         let before = sheet.propagations().len();
         let (wanted, mut steps) = (steps_in_frame(frame, h), 0);
-        let (mut propagated, mut refused, mut flips) = (0, 0, 0);
+        let (mut propagated, mut refused, mut flips, mut bad_loads) = (0, 0, 0, 0);
         let meter = crate::run::Meter::start();
         let mut step = sheet.step();
         loop {
@@ -164,6 +164,7 @@ pub fn run(
             propagated += step.propagations;
             refused += step.refused;
             flips += step.flips;
+            bad_loads += step.non_finite_loads;
             // A failed step ends the frame: the sheet kept its state.
             if steps >= wanted || !step.status.advanced() {
                 break;
@@ -178,11 +179,13 @@ pub fn run(
         );
         let mesh = sheet.mesh();
         let (max, rmse) = edge_stretch(mesh);
-        let finite = mesh
-            .positions()
-            .iter()
-            .chain(mesh.velocities())
-            .all(|x| x.is_finite());
+        // A tearing point whose load was not finite is a non-finite state too.
+        let finite = bad_loads == 0
+            && mesh
+                .positions()
+                .iter()
+                .chain(mesh.velocities())
+                .all(|x| x.is_finite());
         records.push(FrameRecord {
             max_stretch: Some(max),
             rmse_stretch: Some(rmse),

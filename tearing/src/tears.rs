@@ -23,6 +23,7 @@ use alloc::vec::Vec;
 
 use folio_geometry::SheetMesh;
 use folio_geometry::sheet::SheetError;
+use folio_kernels::real::vec_is_finite;
 use folio_kernels::{Real, Vec3Ops, math};
 
 use crate::advance::{Advance, Edit, advance, wedge};
@@ -44,18 +45,23 @@ use crate::texture::{AlphaPair, Side};
 ///   $d$ by the maximum hoop stress's $\theta_c$ for the disk's $K_{II}/K_I$, and releases
 ///   $E_r = J \cdot d / e$, the part of $J$ that does not count the lips;
 /// - elsewhere (a border a tear would start from) $t = J / |J|$ and $E_r = |J| / e$.
+///
+/// `None` when $J$ is not finite (a non-finite stress in the disk).
 fn disk_load<T: Real>(
     mesh: &SheetMesh<T>,
     loads: &TriangleLoads<'_, T>,
     v: u32,
     settings: &TearSettings,
     weights: &mut Vec<f64>,
-) -> (T, [T; 2]) {
+) -> Option<(T, [T; 2])> {
     cone_weights(mesh, v, settings.disk_radius, loads.prescribed, weights);
     let j = configurational_force(mesh, loads, weights);
     let norm = math::sqrt(j[0] * j[0] + j[1] * j[1]);
-    if !(norm > 0.0 && norm.is_finite()) {
-        return (T::ZERO, [T::ZERO; 2]);
+    if !norm.is_finite() {
+        return None;
+    }
+    if norm == 0.0 {
+        return Some((T::ZERO, [T::ZERO; 2]));
     }
     let to_t = |x: [f64; 2]| [T::from_f64(x[0]), T::from_f64(x[1])];
     if let Some(d) = slit_direction(mesh, v, 0.5 * settings.disk_radius) {
@@ -67,14 +73,14 @@ fn disk_load<T: Real>(
         {
             let (sin, cos) = (math::sin(kink_angle(rho)), math::cos(kink_angle(rho)));
             let t = [cos * d[0] - sin * d[1], sin * d[0] + cos * d[1]];
-            return (T::from_f64(along / settings.thickness), to_t(t));
+            return Some((T::from_f64(along / settings.thickness), to_t(t)));
         }
-        return (T::ZERO, [T::ZERO; 2]);
+        return Some((T::ZERO, [T::ZERO; 2]));
     }
-    (
+    Some((
         T::from_f64(norm / settings.thickness),
         to_t([j[0] / norm, j[1] / norm]),
-    )
+    ))
 }
 
 /// At a boundary vertex whose pattern angle is at least $1.75\pi$ (a slit), the unit
@@ -181,6 +187,9 @@ pub struct TearStep<T> {
     /// The last propagation the Griffith criterion allowed but the mesh refused (the sheet
     /// is unchanged by it; reported, not fatal; the next point by ratio was tried then).
     pub refused: Option<SheetError>,
+    /// Candidates whose load was not finite (a non-finite stress or force in the physics'
+    /// loads): not propagated, and counted here so that the caller can report them.
+    pub non_finite: u32,
 }
 
 /// The tears of one sheet and the tearing step's buffers (module docs).
@@ -196,6 +205,8 @@ pub struct Tears<T: Real> {
     pixels: Vec<(u32, u32)>,
     tip_buffer: Vec<u32>,
     weights: Vec<f64>,
+    /// Candidates of the last evaluation whose load was not finite.
+    non_finite: u32,
 }
 
 impl<T: Real> Tears<T> {
@@ -223,6 +234,7 @@ impl<T: Real> Tears<T> {
             pixels: Vec::new(),
             tip_buffer: Vec::new(),
             weights: Vec::new(),
+            non_finite: 0,
         })
     }
 
@@ -296,6 +308,7 @@ impl<T: Real> Tears<T> {
             self.settings.max_candidates,
         );
         self.evaluations.clear();
+        self.non_finite = 0;
         for &candidate in &self.candidates {
             let v = candidate.vertex;
             let p = mesh.pattern()[v as usize];
@@ -314,8 +327,12 @@ impl<T: Real> Tears<T> {
                 if near_tip {
                     continue;
                 }
-                let (release_rate, direction) =
-                    disk_load(mesh, loads, v, &self.settings, &mut self.weights);
+                let Some((release_rate, direction)) =
+                    disk_load(mesh, loads, v, &self.settings, &mut self.weights)
+                else {
+                    self.non_finite += 1;
+                    continue;
+                };
                 let inward = release_rate > T::ZERO && wedge(mesh, v, direction).is_some();
                 self.evaluations.push(Evaluation {
                     candidate,
@@ -329,12 +346,14 @@ impl<T: Real> Tears<T> {
             }
             self.pulls.clear();
             let mut normal = T::Vec3::ZERO;
+            let mut finite_pulls = true;
             for h in mesh.fan_iter(v) {
                 let t = h as usize / 3;
                 let (Some(g), Some(f)) = (loads.gradients.get(t), loads.deformations.get(t)) else {
                     continue;
                 };
                 let corner = h as usize % 3;
+                finite_pulls &= [g[corner], f[0], f[1]].into_iter().all(vec_is_finite::<T>);
                 let [a, b, c] = mesh.triangles()[t].map(|i| mesh.positions()[i as usize]);
                 let centroid = (a + b + c) * T::from_f64(1.0 / 3.0);
                 self.pulls.push(Pull {
@@ -353,6 +372,14 @@ impl<T: Real> Tears<T> {
                 T::from_f64(self.settings.thickness),
                 T::from_f64(self.settings.bisector_tolerance),
             );
+            let finite = finite_pulls
+                && split.release_rate.is_finite()
+                && split.direction[0].is_finite()
+                && split.direction[1].is_finite();
+            if !finite {
+                self.non_finite += 1;
+                continue;
+            }
             let inward = split.release_rate > T::ZERO && wedge(mesh, v, split.direction).is_some();
             self.evaluations.push(Evaluation {
                 candidate,
@@ -374,6 +401,7 @@ impl<T: Real> Tears<T> {
             candidates: self.evaluations.len(),
             propagation: None,
             refused: None,
+            non_finite: self.non_finite,
         };
         let tiny = T::from_f64(1e-30);
         // Walk the passing evaluations by falling ratio, ties by index, without sorting.

@@ -518,6 +518,75 @@ fn a_refused_point_does_not_stall_the_tear() {
     );
 }
 
+/// A non-finite load is counted, never read as "nothing to tear" nor as a value: the
+/// pulled notched sheet's loads with a NaN in one triangle at the notch (its gradients,
+/// Eshelby tensor and deformation gradient) make the tearing step count the notch's
+/// candidate as non-finite and propagate nothing, with either estimator; the same loads
+/// without the NaN give the notch a finite, positive release rate.
+#[test]
+fn a_non_finite_load_is_counted() {
+    use folio_tearing::{Estimator, LoadBuffers, TearSettings, Tears};
+    // The lips pulled apart for half a second with tearing off.
+    let mut settings = SheetSettings::default();
+    settings.effects.tearing = false;
+    let mut sheet = notched(settings);
+    let pulls = [
+        grab(&mut sheet, [4.5, 0.0], DVec3::new(-0.3, 0.0, 0.0)),
+        grab(&mut sheet, [7.5, 0.0], DVec3::new(0.3, 0.0, 0.0)),
+    ];
+    play(&mut sheet, &pulls, 30, f64::INFINITY);
+    for estimator in [Estimator::Split, Estimator::Disk] {
+        let mut buffers = LoadBuffers::default();
+        sheet
+            .model()
+            .triangle_loads(sheet.mesh().positions(), &mut buffers);
+        let tear_settings = TearSettings {
+            estimator,
+            ..TearSettings::default()
+        };
+        let fingers: Vec<u32> = sheet.fingers().iter().map(|f| f.vertex).collect();
+        let mut tears = Tears::<f64>::new(tear_settings, [12.0, 9.0]).expect("tears");
+        let mut mesh = sheet.mesh().clone();
+        let clean = tears.step(&mut mesh, &buffers.loads(0.003, 0.3), &fingers, &[]);
+        assert_eq!(clean.non_finite, 0, "{estimator:?}");
+        let tip = vertex(4, 1);
+        let read = |tears: &Tears<f64>| {
+            tears
+                .evaluations()
+                .iter()
+                .find(|e| e.candidate.vertex == tip)
+                .map(|e| e.release_rate)
+        };
+        assert!(
+            read(&tears).is_some_and(|r| r > 0.0 && r.is_finite()),
+            "{estimator:?}: the pulled notch has a load"
+        );
+
+        // The same, with a NaN stress in a triangle at the notch's tip.
+        let t = sheet
+            .mesh()
+            .triangles()
+            .iter()
+            .position(|t| t.contains(&tip))
+            .expect("a triangle at the tip");
+        for corner in &mut buffers.gradients[t] {
+            corner.x = f64::NAN;
+        }
+        buffers.eshelby[t][0] = f64::NAN;
+        buffers.deformations[t][0].x = f64::NAN;
+        let mut tears = Tears::<f64>::new(tear_settings, [12.0, 9.0]).expect("tears");
+        let mut mesh = sheet.mesh().clone();
+        let bad = tears.step(&mut mesh, &buffers.loads(0.003, 0.3), &fingers, &[]);
+        println!(
+            "{estimator:?}: {} candidate(s) with a non-finite load",
+            bad.non_finite
+        );
+        assert!(bad.non_finite >= 1, "{estimator:?}: {bad:?}");
+        assert!(bad.propagation.is_none(), "{estimator:?}: {bad:?}");
+        assert_eq!(read(&tears), None, "{estimator:?}: the notch was read");
+    }
+}
+
 /// Two fingers grabbing close points and pulled apart violently: the solver may
 /// refuse steps, but the sheet stays valid and finite.
 #[test]

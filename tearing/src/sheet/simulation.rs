@@ -61,6 +61,9 @@ pub struct FrameReport<T> {
     pub last: Option<Propagation<T>>,
     /// Propagations the Griffith criterion allowed but the mesh refused.
     pub refused: u32,
+    /// Tearing points whose load was not finite ([`crate::TearStep::non_finite`]): a bad
+    /// state, counted, never read as "nothing to tear".
+    pub non_finite_loads: u32,
 }
 
 /// The tearing sheet (module docs).
@@ -290,6 +293,7 @@ impl<T: Real> TearingSheet<T> {
             propagations: 0,
             last: None,
             refused: 0,
+            non_finite_loads: 0,
         };
         self.physics(&mut report, true);
         if self.settings.effects.cones {
@@ -319,6 +323,7 @@ impl<T: Real> TearingSheet<T> {
                 if step.refused.is_some() {
                     report.refused += 1;
                 }
+                report.non_finite_loads += step.non_finite;
                 let Some(propagation) = step.propagation else {
                     break;
                 };
