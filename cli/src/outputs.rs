@@ -2,9 +2,10 @@
 //! animation (`animation.glb`) and the timeline (`timeline.svg`), filled frame by frame as
 //! the run goes ([`Outputs::observe`]) and written at its end ([`Outputs::write`]); a sheet
 //! run also writes its last frame: the torn mesh (`torn_sheet.obj`, [`crate::obj`]), every
-//! tear's alpha textures (`tear-K-left.png`, `tear-K-right.png`) and a picture
-//! (`torn_sheet.png`), drawn with the tears' cut-outs ([`crate::sheet_view`]) as the
-//! contact sheet's tiles are.
+//! tear's alpha textures (`tear-K-left.png`, `tear-K-right.png`), a picture
+//! (`torn_sheet.png`) and a close-up of the longest tear's edge (`torn_edge.png`,
+//! [`crate::sheet_view::edge_bounds`]), drawn with the tears' cut-outs
+//! ([`crate::sheet_view`]) as the contact sheet's tiles are.
 
 use std::path::{Path, PathBuf};
 
@@ -16,7 +17,7 @@ use crate::export::Animation;
 use crate::render::{self, ContactSheet, SheetSettings, book_bounds};
 use crate::run::{Report, RunError, Shape};
 use crate::sheet_view::{
-    Cutout, SHEET_EYE, SHEET_LIGHT, mesh_bounds, render_mesh, sheet_bounds, tear_png,
+    Cutout, SHEET_EYE, SHEET_LIGHT, edge_bounds, mesh_bounds, render_mesh, sheet_bounds, tear_png,
 };
 use crate::timeline::timeline_svg;
 use folio_scene::scene::{ModelKind, Scene};
@@ -249,17 +250,35 @@ fn write_sheet(
             columns: 1,
             ..*settings
         };
-        let (w, h, rgba) = render::picture(
-            settings,
-            mesh_bounds(&view),
-            &view,
-            settings.paper.thickness,
-            |t, uv| cutout.keep(t, uv),
-        )
-        .map_err(fail)?;
-        let path = dir.join("torn_sheet.png");
-        std::fs::write(&path, render::encode_png(w, h, &rgba).map_err(fail)?).map_err(fail)?;
-        written.push((path, format!("{w} x {h}")));
+        let mut draw = |settings: SheetSettings, bounds, name: &str, what: &str| {
+            let (w, h, rgba) = render::picture(
+                settings,
+                bounds,
+                &view,
+                settings.paper.thickness,
+                |t, uv| cutout.keep(t, uv),
+            )
+            .map_err(fail)?;
+            let path = dir.join(name);
+            std::fs::write(&path, render::encode_png(w, h, &rgba).map_err(fail)?).map_err(fail)?;
+            written.push((path, format!("{w} x {h}{what}")));
+            Ok::<(), RunError>(())
+        };
+        draw(settings, mesh_bounds(&view), "torn_sheet.png", "")?;
+        if let Some(bounds) = edge_bounds(sheet) {
+            // Straight at the sheet, without the table.
+            let close_up = SheetSettings {
+                eye: [0.0, 0.0, 1.0],
+                table: false,
+                ..settings
+            };
+            draw(
+                close_up,
+                bounds,
+                "torn_edge.png",
+                ", a close-up of the longest tear",
+            )?;
+        }
     }
     Ok(())
 }

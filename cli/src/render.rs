@@ -71,6 +71,10 @@ pub struct SheetSettings {
     /// Direction from the framed box's centre to the point light (unnormalized, finite,
     /// not zero). Default [`BOOK_LIGHT`].
     pub light: [f32; 3],
+    /// Whether the table is drawn under the framed box. Default true; a close-up that
+    /// frames part of an upright sheet leaves it out, or its plane would hide the sheet
+    /// below the box.
+    pub table: bool,
 }
 
 impl Default for SheetSettings {
@@ -82,6 +86,7 @@ impl Default for SheetSettings {
             paper: Paper::default(),
             eye: BOOK_EYE,
             light: BOOK_LIGHT,
+            table: true,
         }
     }
 }
@@ -135,6 +140,7 @@ fn stage(settings: &SheetSettings, bounds: [[f32; 3]; 2]) -> Result<Stage, Rende
         settings.supersample as usize,
         settings.paper,
         [settings.eye, settings.light].map(Vec3::from),
+        settings.table,
     ))
 }
 

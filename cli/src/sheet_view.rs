@@ -163,6 +163,61 @@ fn side_of(path: &[[f64; 2]], p: [f64; 2]) -> Option<Side> {
     best.map(|b| b.1)
 }
 
+/// Half the side of the box a close-up of a torn edge frames, sheet units: 1.2 units
+/// across, about 2 cm of a page 21 cm wide, the span of seed `002_…`'s Fig. 20.
+pub const CLOSE_UP_HALF_SIDE: f64 = 0.6;
+
+/// The box a close-up of `sheet`'s torn edge frames: a cube of side
+/// $2 \times$ [`CLOSE_UP_HALF_SIDE`] centred on the 3D position of the sheet vertex nearest,
+/// in the pattern, to the middle (by length) of the longest tear's path. `None` when no
+/// tear has a segment of positive length or that vertex's position is not finite.
+#[must_use]
+pub fn edge_bounds(sheet: &TearingSheet<f64>) -> Option<[[f32; 3]; 2]> {
+    let length = |path: &[[f64; 2]]| -> f64 {
+        path.windows(2)
+            .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+            .sum()
+    };
+    let longest = sheet
+        .tears()
+        .tears()
+        .iter()
+        .map(|tear| (length(&tear.path), &tear.path))
+        .filter(|(l, _)| *l > 0.0)
+        .max_by(|a, b| a.0.total_cmp(&b.0))?;
+    let (total, path) = longest;
+    let mut left = 0.5 * total;
+    let mut middle = path[0];
+    for w in path.windows(2) {
+        let step = (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]);
+        if step >= left && step > 0.0 {
+            let t = left / step;
+            middle = [0, 1].map(|k| w[0][k] + t * (w[1][k] - w[0][k]));
+            break;
+        }
+        left -= step;
+        middle = w[1];
+    }
+    let mesh = sheet.mesh();
+    let nearest = mesh
+        .pattern()
+        .iter()
+        .map(|q| (q[0] - middle[0]).hypot(q[1] - middle[1]))
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(&b.1))?
+        .0;
+    let x = mesh.positions()[nearest];
+    let centre = [x.x(), x.y(), x.z()];
+    if !centre.iter().all(|c| c.is_finite()) {
+        return None;
+    }
+    let r = CLOSE_UP_HALF_SIDE;
+    Some([
+        centre.map(|c| (c - r) as f32),
+        centre.map(|c| (c + r) as f32),
+    ])
+}
+
 /// The cut-outs of a sheet's tears on its render mesh ([`render_mesh`]; module docs).
 pub struct Cutout<'a> {
     /// Sheet triangles `n`: render triangles `0..n` are the front, `n..2n` the back.

@@ -215,7 +215,7 @@ fn decode_png(bytes: &[u8]) -> (u32, u32, Vec<u8>) {
 /// expectations; its outputs are read back: the report's tears, the torn mesh (an OBJ
 /// whose lips are extra vertices), two decodable PNG alpha textures per tear of the
 /// raster's size whose left and right masks differ (there is a cut, transparent on
-/// opposite sides), and the picture of the torn sheet.
+/// opposite sides), the picture of the torn sheet and the close-up of its torn edge.
 #[test]
 fn tear_scenes_write_their_mesh_textures_and_picture() {
     let dir = scratch("tears");
@@ -291,17 +291,36 @@ fn tear_scenes_write_their_mesh_textures_and_picture() {
             assert!(left.chunks(4).any(|p| p[3] == 255 && p[0] > 200), "{name}");
         }
         assert!(cut, "{name}: no tear cuts its two masks apart");
-        let (w, h, picture) = decode_png(&std::fs::read(out.join("torn_sheet.png")).unwrap());
-        assert_eq!((w, h), (960, 720), "{name}");
         // The paper fills a good part of the picture (light pixels).
-        let light = picture
-            .chunks(4)
-            .filter(|p| p[0] > 200 && p[1] > 200)
-            .count();
-        let share = light as f64 / f64::from(w * h);
-        println!("{name}: picture {:.1} % light", 100.0 * share);
+        let [share, _] = shares(&out.join("torn_sheet.png"), name);
         assert!((0.1..0.9).contains(&share), "{name}: {share}");
+        // The close-up of the longest tear's edge shows paper and, beside its edge, what
+        // lies behind the sheet.
+        let [paper, behind] = shares(&out.join("torn_edge.png"), name);
+        assert!(
+            paper > 0.05 && (0.02..0.9).contains(&behind),
+            "{name}: {paper} {behind}"
+        );
     }
+}
+
+/// The shares of light pixels (paper) and of the background (bluish grey: blue above red
+/// by 15 or more, which neither the paper nor its ink is) in the 960 x 720 picture `path`
+/// of scene `name`.
+fn shares(path: &Path, name: &str) -> [f64; 2] {
+    let (w, h, picture) = decode_png(&std::fs::read(path).unwrap());
+    assert_eq!((w, h), (960, 720), "{name}: {}", path.display());
+    let count = |keep: fn(&[u8]) -> bool| picture.chunks(4).filter(|p| keep(p)).count();
+    let light = count(|p| p[0] > 200 && p[1] > 200);
+    let background = count(|p| i32::from(p[2]) - i32::from(p[0]) >= 15);
+    let shares = [light, background].map(|n| n as f64 / f64::from(w * h));
+    println!(
+        "{name}: {} {:.1} % light, {:.1} % background",
+        path.display(),
+        100.0 * shares[0],
+        100.0 * shares[1]
+    );
+    shares
 }
 
 #[test]

@@ -332,7 +332,8 @@ pub struct OutputSection {
     /// Write every tear's alpha textures `tear-K-left.png`, `tear-K-right.png` (sheet;
     /// default true).
     pub textures: Option<Spanned<bool>>,
-    /// Write the picture of the last frame `torn_sheet.png` (sheet; default true).
+    /// Write the picture of the last frame `torn_sheet.png` and the close-up of its
+    /// longest tear's edge `torn_edge.png` (sheet; default true).
     pub picture: Option<Spanned<bool>>,
 }
 

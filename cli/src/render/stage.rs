@@ -91,7 +91,8 @@ pub struct Stage {
     /// Radiant intensity: irradiance at distance $d$ is intensity / $d^2$.
     intensity: f32,
     shadow: ShadowMap,
-    table: [Vec3; 4],
+    /// The table's corners, `None` when it is not drawn.
+    table: Option<[Vec3; 4]>,
     paper: Paper,
     tile: [usize; 2],
     supersample: usize,
@@ -110,6 +111,7 @@ impl Stage {
         supersample: usize,
         paper: Paper,
         [eye, light]: [Vec3; 2],
+        table: bool,
     ) -> Self {
         let [lo, hi] = bounds.map(Vec3::from);
         let centre = 0.5 * (lo + hi);
@@ -128,12 +130,12 @@ impl Stage {
             intensity: CENTRE_IRRADIANCE * light_distance * light_distance,
             shadow: ShadowMap::new(light, bounds, SHADOW_RESOLUTION),
             // Counter-clockwise seen from above.
-            table: [
+            table: table.then_some([
                 Vec3::new(x0, y, z0),
                 Vec3::new(x0, y, z1),
                 Vec3::new(x1, y, z1),
                 Vec3::new(x1, y, z0),
-            ],
+            ]),
             paper,
             tile,
             supersample,
@@ -158,14 +160,16 @@ impl Stage {
 
         let camera = self.camera;
         let samples = &mut self.samples;
-        let table = self.table.map(|p| Corner {
-            view: camera.view_of(p),
-            attributes: [p.x, p.y, p.z, 0.0, 1.0, 0.0, 0.0, 0.0],
-        });
-        for t in [[0, 1, 2], [0, 2, 3]] {
-            rasterize(&camera, &t.map(|k| table[k]), true, |f| {
-                store(samples, w, Material::Table, &f);
+        if let Some(table) = self.table {
+            let table = table.map(|p| Corner {
+                view: camera.view_of(p),
+                attributes: [p.x, p.y, p.z, 0.0, 1.0, 0.0, 0.0, 0.0],
             });
+            for t in [[0, 1, 2], [0, 2, 3]] {
+                rasterize(&camera, &t.map(|k| table[k]), true, |f| {
+                    store(samples, w, Material::Table, &f);
+                });
+            }
         }
         for (k, (t, &surface)) in mesh.triangles.iter().zip(&mesh.surfaces).enumerate() {
             if let Some(c) = corners(&camera, mesh, t) {
