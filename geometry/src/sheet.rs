@@ -7,6 +7,8 @@
 //! - [`edit`]: insert a vertex in a triangle or on an edge, cut an edge (splitting its
 //!   boundary end points into two tear lips), move a tear tip (removing it from the
 //!   boundary, seed Fig. 8), flip an edge.
+//! - [`quality`]: the triangles' smallest pattern angles and the local Delaunay flips that
+//!   keep them well shaped where a tear edits the mesh.
 //! - [`cones`]: flat and curved (generalized-cone) regions from the discrete curvature,
 //!   ruling directions, junction points, and the remesh toward the rulings.
 //!
@@ -16,6 +18,7 @@ pub mod cones;
 pub mod edit;
 mod error;
 mod mesh;
+pub mod quality;
 
 pub use cones::{ConeLayer, ConeSettings, Region};
 pub use edit::Cut;

@@ -42,7 +42,7 @@ pub use advance::Edit;
 pub use candidates::{Candidate, Kind};
 pub use error::TearingError;
 pub use release::{LoadBuffers, TriangleLoads};
-pub use settings::{Estimator, TearSettings};
+pub use settings::{Estimator, TearSettings, TipRemesh};
 pub use split::Split;
 pub use tears::{Evaluation, Propagation, Tear, TearStep, Tears};
 pub use texture::{AlphaPair, Side};

@@ -33,7 +33,7 @@ use crate::error::TearingError;
 use crate::fiber::FiberTexture;
 use crate::mixity::{kink_angle, mode_mixity};
 use crate::release::{TriangleLoads, cone_weights, configurational_force};
-use crate::settings::{Estimator, TearSettings};
+use crate::settings::{Estimator, TearSettings, TipRemesh};
 use crate::split::{Pull, Split, split_forces, unit};
 use crate::texture::{AlphaPair, Side};
 
@@ -445,10 +445,11 @@ impl<T: Real> Tears<T> {
         let from = mesh.pattern()[v as usize];
         let tear = self.tears.iter().position(|t| t.tip == Some(v));
         let t = e.direction;
+        let shaped = self.settings.remesh == TipRemesh::Shaped;
         let straight = tear.is_some_and(|i| {
             let d = self.tears[i].direction;
             let cos = (d[0] * t[0] + d[1] * t[1]).to_f64().clamp(-1.0, 1.0);
-            acos(cos) <= self.settings.turn_threshold
+            acos(cos) <= self.settings.turn_threshold || (shaped && short_segment(mesh, v))
         });
         let length = T::from_f64(
             (self.settings.speed * e.release_rate.to_f64())
@@ -461,6 +462,7 @@ impl<T: Real> Tears<T> {
             length,
             straight,
             T::from_f64(self.settings.snap),
+            shaped,
         )?;
         let to = match outcome.tip {
             Some(q) => mesh.pattern()[q as usize],
@@ -619,3 +621,24 @@ fn outward<T: Real>(mesh: &SheetMesh<T>, v: u32, normal: T::Vec3) -> T::Vec3 {
         normal_out
     }
 }
+
+/// Whether the straight segment of the tear that ends at tip `v` (from its boundary
+/// neighbour, the lips' last kink) is shorter than [`SHORT_SEGMENT`] times the longest edge
+/// of `v`'s fan.
+fn short_segment<T: Real>(mesh: &SheetMesh<T>, v: u32) -> bool {
+    let Some((a, _)) = mesh.boundary_neighbours(v) else {
+        return false;
+    };
+    let p = mesh.pattern();
+    let d2 = |x: [T; 2], y: [T; 2]| (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]);
+    let o = p[v as usize];
+    let longest = mesh
+        .fan_iter(v)
+        .map(|h| d2(o, p[mesh.half_edge(h).1 as usize]).to_f64())
+        .fold(0.0, f64::max);
+    d2(o, p[a as usize]).to_f64() < SHORT_SEGMENT * SHORT_SEGMENT * longest
+}
+
+/// A tip's straight segment shorter than this fraction of its fan's longest edge slides on
+/// even where the tear turns ([`crate::TipRemesh::Shaped`]; [`crate::advance`]).
+const SHORT_SEGMENT: f64 = 0.5;

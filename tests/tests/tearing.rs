@@ -882,8 +882,8 @@ fn changed_finger_positions_branch_the_tear() {
 }
 
 /// `tearing::advance` keeps its promise "the mesh is unchanged on error" for any request:
-/// random tips (boundary vertices), directions, lengths, slides or splits on sheets torn at
-/// random. Every refused advance leaves pattern, positions and triangles as they were, and
+/// random tips (boundary vertices), directions, lengths, slides or splits, the seed's
+/// remesh or the shaped one, on sheets torn at random. Every refused advance leaves pattern, positions and triangles as they were, and
 /// every accepted one leaves a valid manifold. (A split once inserted its new vertex and then
 /// failed to cut, leaving the sheet a vertex larger than the solver's state.)
 #[test]
@@ -902,12 +902,13 @@ fn refused_advances_leave_the_sheet_unchanged() {
             let t = [angle.cos(), angle.sin()];
             let length = rng.uniform(0.01, 2.0).powi(2);
             let straight = rng.next_u64() % 2 == 0;
+            let shaped = rng.next_u64() % 2 == 0;
             let before = (
                 mesh.pattern().to_vec(),
                 mesh.positions().to_vec(),
                 mesh.triangles().to_vec(),
             );
-            match advance(&mut mesh, p, t, length, straight, 0.12) {
+            match advance(&mut mesh, p, t, length, straight, 0.12, shaped) {
                 Ok(_) => {
                     accepted += 1;
                     mesh.check().expect("a valid sheet after an advance");

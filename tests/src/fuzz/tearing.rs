@@ -81,6 +81,7 @@ pub fn run(data: &[u8]) {
                     length,
                     straight,
                     snap,
+                    input.flag(),
                 )
                 .is_ok()
             }
