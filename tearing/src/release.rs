@@ -168,18 +168,14 @@ pub fn cone_weights<T: Real>(
             cone(pattern_at(mesh, i), p, radius)
         }
     }));
-    if !mesh.is_boundary(v) {
-        q[v as usize] = 1.0;
-        for (w, &fixed) in q.iter_mut().zip(prescribed) {
-            if fixed {
-                *w = 0.0;
-            }
-        }
-        return;
-    }
-    // Walk the boundary both ways from v while within the disk.
     q[v as usize] = 1.0;
-    for forward in [true, false] {
+    // On the boundary, walk it both ways from v while within the disk.
+    let walks: &[bool] = if mesh.is_boundary(v) {
+        &[true, false]
+    } else {
+        &[]
+    };
+    for &forward in walks {
         let mut at = v;
         while let Some((next, previous)) = mesh.boundary_neighbours(at) {
             let step = if forward { next } else { previous };

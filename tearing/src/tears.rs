@@ -18,6 +18,15 @@
 //! tear; when the start lies on an existing tear's path (a lip, seed Sec. 5.3: "the tear
 //! could thus even branch at this point"), the new tear is a branch and its alpha textures
 //! start as a copy of its parent's (Sec. 6.2).
+//!
+//! **The disk estimator's rules** ([`Estimator::Disk`]; the choices the seed does not make,
+//! each a named constant):
+//! - a boundary vertex whose pattern angle is at least [`SLIT_ANGLE`] ($1.75\pi$) is a slit
+//!   (a tip or a notch): its crack runs along the slit's bisector, read where the lips
+//!   leave [`LIP_READING`] (half) of the disk's radius, and turns by the kink of the mode
+//!   mixity; elsewhere the tear starts along $J$;
+//! - a candidate other than a tip that lies within the disk of a tip is not evaluated: its
+//!   $J$ is mostly that tip's, and a kink a step behind a tip would start a branch there.
 
 use alloc::vec::Vec;
 
@@ -36,6 +45,15 @@ use crate::release::{TriangleLoads, cone_weights, configurational_force};
 use crate::settings::{Estimator, TearSettings, TipRemesh};
 use crate::split::{Pull, Split, split_forces, unit};
 use crate::texture::{AlphaPair, Side};
+
+/// Smallest pattern angle (radians, $1.75\pi$) of a boundary vertex that the disk estimator
+/// reads as a slit, a tip or a notch (module docs): a straight border has $\pi$, a tip
+/// $2\pi$.
+pub const SLIT_ANGLE: f64 = 1.75 * core::f64::consts::PI;
+
+/// Where a slit's lips are read for its bisector, as a fraction of the disk's radius
+/// (module docs): far enough that a short last step does not turn the crack's frame.
+pub const LIP_READING: f64 = 0.5;
 
 /// The release rate and direction at vertex `v` over the disk of the settings, zero for no
 /// release ([`crate::release`], [`crate::mixity`]):
@@ -64,7 +82,7 @@ fn disk_load<T: Real>(
         return Some((T::ZERO, [T::ZERO; 2]));
     }
     let to_t = |x: [f64; 2]| [T::from_f64(x[0]), T::from_f64(x[1])];
-    if let Some(d) = slit_direction(mesh, v, 0.5 * settings.disk_radius) {
+    if let Some(d) = slit_direction(mesh, v, LIP_READING * settings.disk_radius) {
         let p = mesh.pattern()[v as usize];
         let tip = [p[0].to_f64(), p[1].to_f64()];
         let along = j[0] * d[0] + j[1] * d[1];
@@ -90,7 +108,7 @@ fn disk_load<T: Real>(
 /// the last point of a lip that ends sooner), so that a short last step of the tear does not
 /// turn the crack's frame.
 fn slit_direction<T: Real>(mesh: &SheetMesh<T>, v: u32, reach: f64) -> Option<[f64; 2]> {
-    if mesh.pattern_angle(v).to_f64() < 1.75 * core::f64::consts::PI {
+    if mesh.pattern_angle(v).to_f64() < SLIT_ANGLE {
         return None;
     }
     let p = mesh.pattern()[v as usize];
@@ -314,9 +332,7 @@ impl<T: Real> Tears<T> {
             let p = mesh.pattern()[v as usize];
             let fracture_energy = self.fracture_energy(p, candidate.kind == Kind::Tip);
             if self.settings.estimator == Estimator::Disk {
-                // A point within the disk of a tip other than its own is in that tip's
-                // field: its J is mostly the tip's, and a kink a step behind a tip would
-                // start a branch there.
+                // Not within another tip's disk (module docs).
                 let radius2 = self.settings.disk_radius * self.settings.disk_radius;
                 let near_tip = candidate.kind != Kind::Tip
                     && self.tip_buffer.iter().any(|&tip| {

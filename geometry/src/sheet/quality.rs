@@ -194,6 +194,10 @@ mod tests {
         }
         mesh.check().unwrap();
         assert!(flips > 0);
-        assert!(mesh.worst_angle() >= before, "{before} -> {}", mesh.worst_angle());
+        assert!(
+            mesh.worst_angle() >= before,
+            "{before} -> {}",
+            mesh.worst_angle()
+        );
     }
 }

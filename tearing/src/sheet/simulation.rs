@@ -442,13 +442,18 @@ fn pad_vertices<T: Real>(mesh: &SheetMesh<T>, centre: u32, radius: T) -> Vec<u32
         let q = mesh.pattern()[v as usize];
         (q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]) <= reach * reach
     };
+    let mut seen = alloc::vec![false; mesh.vertex_count()];
     let mut found = alloc::vec![centre];
+    if let Some(s) = seen.get_mut(centre as usize) {
+        *s = true;
+    }
     let mut next = 0;
     while let Some(&v) = found.get(next) {
         next += 1;
         for h in mesh.fan_iter(v) {
             for w in mesh.triangles()[h as usize / 3] {
-                if !found.contains(&w) && inside(w) {
+                if !seen[w as usize] && inside(w) {
+                    seen[w as usize] = true;
                     found.push(w);
                 }
             }
