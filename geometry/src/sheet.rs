@@ -23,4 +23,7 @@ pub mod quality;
 pub use cones::{ConeLayer, ConeSettings, Region};
 pub use edit::Cut;
 pub use error::SheetError;
-pub use mesh::{FanIter, NONE, SheetMesh, next as next_half_edge, prev as prev_half_edge};
+pub use mesh::{
+    FanIter, NONE, SheetMesh, dist2 as pattern_distance2, longest_edge2, next as next_half_edge,
+    prev as prev_half_edge,
+};

@@ -34,7 +34,10 @@
 //!   the path still records every step, the mesh's crack bends every half edge or more.
 
 use folio_geometry::SheetMesh;
-use folio_geometry::sheet::{Cut, SheetError, next_half_edge, prev_half_edge};
+use folio_geometry::sheet::{
+    Cut, NONE, SheetError, longest_edge2, next_half_edge, pattern_distance2 as dist2,
+    prev_half_edge,
+};
 use folio_kernels::Real;
 
 /// How the mesh changed.
@@ -83,16 +86,19 @@ pub fn advance<T: Real>(
         .get(p as usize)
         .ok_or(SheetError::OutOfRange { field: "p" })?;
     let target = [origin[0] + t[0] * length, origin[1] + t[1] * length];
-    // A slide may flip edges first, and a split is two edits (the new vertex, then the cut);
-    // a later edit may refuse after an earlier one took: put the sheet back as it was.
+    // The seed's slide is one edit, refused whole.
+    if straight && !shaped && mesh.move_vertex(p, target).is_ok() {
+        return Ok(Advance {
+            edit: Edit::Moved,
+            tip: Some(p),
+            cut: None,
+        });
+    }
+    // A shaped slide may flip edges first, and a split is two edits (the new vertex, then
+    // the cut); a later edit may refuse after an earlier one took: put the sheet back as it
+    // was.
     let backup = mesh.clone();
-    let slid = straight
-        && if shaped {
-            slide(mesh, p, t, length, target)
-        } else {
-            mesh.move_vertex(p, target).is_ok()
-        };
-    let result = if slid {
+    let result = if straight && shaped && slide(mesh, p, t, length, target) {
         Ok(Advance {
             edit: Edit::Moved,
             tip: Some(p),
@@ -150,7 +156,7 @@ fn slide<T: Real>(mesh: &mut SheetMesh<T>, p: u32, t: [T; 2], length: T, target:
 /// The far corner $b$ or $c$ of the wedge triangle $(p, b, c)$ of half-edge `h` within
 /// `snap` times the triangle's longest edge of `target`, the nearer if both are.
 fn near_corner<T: Real>(mesh: &SheetMesh<T>, h: u32, target: [T; 2], snap: T) -> Option<u32> {
-    let reach2 = snap * snap * longest_edge2(mesh, h);
+    let reach2 = snap * snap * longest_edge_of(mesh, h);
     let (_, b) = mesh.half_edge(h);
     let c = mesh.half_edge(next_half_edge(h)).1;
     let d = |v: u32| dist2(mesh.pattern()[v as usize], target);
@@ -159,26 +165,18 @@ fn near_corner<T: Real>(mesh: &SheetMesh<T>, h: u32, target: [T; 2], snap: T) ->
 }
 
 /// The squared length of the longest edge of the triangle of half-edge `h`.
-fn longest_edge2<T: Real>(mesh: &SheetMesh<T>, h: u32) -> T {
-    let c = mesh.triangles()[h as usize / 3].map(|i| mesh.pattern()[i as usize]);
-    [dist2(c[0], c[1]), dist2(c[1], c[2]), dist2(c[2], c[0])]
-        .into_iter()
-        .fold(T::ZERO, |m, x| if x > m { x } else { m })
-}
-
-/// The squared distance between two pattern points.
-fn dist2<T: Real>(x: [T; 2], y: [T; 2]) -> T {
-    (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1])
+fn longest_edge_of<T: Real>(mesh: &SheetMesh<T>, h: u32) -> T {
+    longest_edge2(mesh.triangles()[h as usize / 3].map(|i| mesh.pattern()[i as usize]))
 }
 
 /// Whether `target`, in the wedge triangle $(p, b, c)$ of half-edge `h` $= p \to b$, lies
 /// within `snap` times that triangle's longest edge of one of its edges at $p$ that is on
 /// the sheet's border (measured across the edge, where the target projects onto it).
 fn along_border<T: Real>(mesh: &SheetMesh<T>, h: u32, target: [T; 2], snap: T) -> bool {
-    let reach2 = snap * snap * longest_edge2(mesh, h);
+    let reach2 = snap * snap * longest_edge_of(mesh, h);
     // The edges at p: p → b (h) and c → p (the half-edge before h).
     [h, prev_half_edge(h)].into_iter().any(|e| {
-        if mesh.twin(e) != folio_geometry::sheet::NONE {
+        if mesh.twin(e) != NONE {
             return false;
         }
         let (a, b) = mesh.half_edge(e);
@@ -245,9 +243,7 @@ fn split<T: Real>(
     let far = next_half_edge(h);
     let (b, c) = mesh.half_edge(far);
     let (pb, pc) = (mesh.pattern()[b as usize], mesh.pattern()[c as usize]);
-    let far_length = folio_kernels::math::sqrt(
-        (pc[0] - pb[0]) * (pc[0] - pb[0]) + (pc[1] - pb[1]) * (pc[1] - pb[1]),
-    );
+    let far_length = folio_kernels::math::sqrt(dist2(pb, pc));
     let inside = if shaped {
         length < exit - snap * far_length
     } else {

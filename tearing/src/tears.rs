@@ -31,7 +31,7 @@
 use alloc::vec::Vec;
 
 use folio_geometry::SheetMesh;
-use folio_geometry::sheet::SheetError;
+use folio_geometry::sheet::{SheetError, pattern_distance2};
 use folio_kernels::real::vec_is_finite;
 use folio_kernels::{Real, Vec3Ops, math};
 
@@ -646,13 +646,12 @@ fn short_segment<T: Real>(mesh: &SheetMesh<T>, v: u32) -> bool {
         return false;
     };
     let p = mesh.pattern();
-    let d2 = |x: [T; 2], y: [T; 2]| (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]);
     let o = p[v as usize];
     let longest = mesh
         .fan_iter(v)
-        .map(|h| d2(o, p[mesh.half_edge(h).1 as usize]).to_f64())
-        .fold(0.0, f64::max);
-    d2(o, p[a as usize]).to_f64() < SHORT_SEGMENT * SHORT_SEGMENT * longest
+        .map(|h| pattern_distance2(o, p[mesh.half_edge(h).1 as usize]))
+        .fold(T::ZERO, |m, x| if x > m { x } else { m });
+    pattern_distance2(o, p[a as usize]) < T::from_f64(SHORT_SEGMENT * SHORT_SEGMENT) * longest
 }
 
 /// A tip's straight segment shorter than this fraction of its fan's longest edge slides on

@@ -23,7 +23,9 @@ use alloc::vec::Vec;
 use folio_kernels::{Real, Vec3Ops};
 
 use super::error::SheetError;
-use super::mesh::{NONE, SheetMesh, dist2, inside_tolerance, next, prev, signed_area};
+use super::mesh::{
+    NONE, SheetMesh, dist2, inside_tolerance, longest_edge2, next, prev, signed_area,
+};
 
 /// What [`SheetMesh::cut_edge`] did.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -124,10 +126,7 @@ impl<T: Real> SheetMesh<T> {
         let c = tri.map(|i| self.pattern[i as usize]);
         // Squared lengths of the edges opposite each corner.
         let opposite = [dist2(c[1], c[2]), dist2(c[2], c[0]), dist2(c[0], c[1])];
-        let longest = opposite
-            .iter()
-            .fold(T::ZERO, |m, &x| if x > m { x } else { m });
-        let reach2 = snap * snap * longest;
+        let reach2 = snap * snap * longest_edge2(c);
         let corner = (0..3).fold(0, |best, k| {
             if dist2(p, c[k]) < dist2(p, c[best]) {
                 k

@@ -470,12 +470,21 @@ pub(crate) fn signed_area<T: Real>(a: [T; 2], b: [T; 2], c: [T; 2]) -> T {
     T::HALF * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
 }
 
-/// Squared distance of two pattern points.
+/// Squared distance of two pattern points (squared sheet units).
 #[inline]
 #[must_use]
-pub(crate) fn dist2<T: Real>(a: [T; 2], b: [T; 2]) -> T {
+pub fn dist2<T: Real>(a: [T; 2], b: [T; 2]) -> T {
     let (du, dv) = (b[0] - a[0], b[1] - a[1]);
     du * du + dv * dv
+}
+
+/// The squared length of the longest edge of the pattern triangle with corners `c`.
+#[inline]
+#[must_use]
+pub fn longest_edge2<T: Real>(c: [[T; 2]; 3]) -> T {
+    [dist2(c[1], c[2]), dist2(c[2], c[0]), dist2(c[0], c[1])]
+        .into_iter()
+        .fold(T::ZERO, |m, x| if x > m { x } else { m })
 }
 
 /// The pattern angle at `a` of the triangle corner `(a, b, c)`, in $[0, \pi]$.
