@@ -19,6 +19,7 @@ pub mod edit;
 mod error;
 mod mesh;
 pub mod quality;
+mod scratch;
 
 pub use cones::{ConeLayer, ConeSettings, Region};
 pub use edit::Cut;

@@ -45,6 +45,7 @@ pub mod ordering;
 pub mod pattern;
 pub mod report;
 pub mod ring;
+pub mod room;
 pub mod settings;
 pub mod step;
 pub mod symbolic;

@@ -7,6 +7,7 @@
 //! on every evaluation; the order and sizes of the families must stay the same until the
 //! model bumps [`Model::topology_version`].
 
+use crate::room::Room;
 use alloc::vec::Vec;
 use folio_kernels::{Constraint, Potential, Real};
 
@@ -84,6 +85,18 @@ impl<T, P, const N: usize> PotentialSet<T, P, N> {
     /// Adds a term on `nodes`. Node indices are checked when the solver analyses the model.
     pub fn push(&mut self, kernel: P, nodes: [u32; N]) {
         self.terms.push(Term { kernel, nodes });
+    }
+
+    /// Removes every term and sets the weight, keeping the capacity (a model rebuilt in
+    /// place allocates nothing while its terms fit).
+    pub fn reset(&mut self, weight: T) {
+        self.weight = weight;
+        self.terms.clear();
+    }
+
+    /// Makes room for `terms` terms in all.
+    pub fn reserve(&mut self, terms: usize) {
+        self.terms.room_for(terms);
     }
 
     /// The terms.

@@ -97,7 +97,7 @@ pub fn advance<T: Real>(
     // A shaped slide may flip edges first, and a split is two edits (the new vertex, then
     // the cut); a later edit may refuse after an earlier one took: put the sheet back as it
     // was.
-    let backup = mesh.clone();
+    mesh.checkpoint();
     let result = if straight && shaped && slide(mesh, p, t, length, target) {
         Ok(Advance {
             edit: Edit::Moved,
@@ -113,7 +113,7 @@ pub fn advance<T: Real>(
                 mesh.improve_around(tip, T::from_f64(WELL_SHAPED), MAX_QUALITY_FLIPS);
             }
         }
-        Err(_) => *mesh = backup,
+        Err(_) => mesh.rollback(),
     }
     result
 }

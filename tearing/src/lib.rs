@@ -45,4 +45,4 @@ pub use release::{LoadBuffers, TriangleLoads};
 pub use settings::{Estimator, TearSettings, TipRemesh};
 pub use split::Split;
 pub use tears::{Evaluation, Propagation, Tear, TearStep, Tears};
-pub use texture::{AlphaPair, Side};
+pub use texture::{AlphaPair, PathProfile, Side};

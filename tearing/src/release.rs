@@ -71,6 +71,7 @@
 use alloc::vec::Vec;
 
 use folio_geometry::SheetMesh;
+use folio_solvers::room::Room;
 
 use folio_kernels::{Real, Vec3Ops, math};
 
@@ -106,6 +107,16 @@ pub struct LoadBuffers<T: Real> {
     pub deformations: Vec<[T::Vec3; 2]>,
     /// See [`TriangleLoads::prescribed`].
     pub prescribed: Vec<bool>,
+}
+
+impl<T: Real> LoadBuffers<T> {
+    /// Room for a mesh of `triangles` triangles and `vertices` vertices.
+    pub fn reserve(&mut self, triangles: usize, vertices: usize) {
+        self.gradients.room_for(triangles);
+        self.eshelby.room_for(triangles);
+        self.deformations.room_for(triangles);
+        self.prescribed.room_for(vertices);
+    }
 }
 
 impl<T: Real> Default for LoadBuffers<T> {

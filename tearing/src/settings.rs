@@ -99,12 +99,17 @@ pub struct TearSettings {
     /// at 176 it strays by 3-8 texels on a step, on average by direction (test
     /// `the_edge_is_fibrous_in_every_direction`).
     pub texture_density: f64,
+    /// Tears whose alpha textures and path are allocated at setup ([`crate::Tears::new`]), so
+    /// that starting one inside a frame allocates nothing; a tear beyond these allocates its
+    /// own when it starts. In [0, 64]. Default 2: on the default sheet and texture density
+    /// a tear's two masks take 6.7 MB, so the default reserves 13.4 MB.
+    pub reserved_tears: usize,
 }
 
 impl Default for TearSettings {
     /// The seed's $c = 0.005$ and 0.1 rad, with a thickness of 0.01, damage 0.5, speed
     /// 50 (a step of 0.125 at $E_r = E_f$ for a mean fiber value) and steps between 0.05 and 0.6 sheet units, ten candidates, inward angles
-    /// beyond $\pi + 0.3$, snap 0.12, 176 texture pixels per sheet unit.
+    /// beyond $\pi + 0.3$, snap 0.12, 176 texture pixels per sheet unit, two tears reserved.
     fn default() -> Self {
         Self {
             thickness: 0.01,
@@ -124,6 +129,7 @@ impl Default for TearSettings {
             fibers: FiberSettings::default(),
             detail: DetailSettings::default(),
             texture_density: 176.0,
+            reserved_tears: 2,
         }
     }
 }
@@ -161,6 +167,12 @@ impl TearSettings {
             self.texture_density,
             1.0,
             4096.0,
+        )?;
+        check_range(
+            "TearSettings.reserved_tears",
+            self.reserved_tears as f64,
+            0.0,
+            64.0,
         )?;
         self.fibers.validate()?;
         self.detail.validate()

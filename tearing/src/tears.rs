@@ -44,7 +44,8 @@ use crate::mixity::{kink_angle, mode_mixity};
 use crate::release::{TriangleLoads, cone_weights, configurational_force};
 use crate::settings::{Estimator, TearSettings, TipRemesh};
 use crate::split::{Pull, Split, split_forces, unit};
-use crate::texture::{AlphaPair, Side};
+use crate::texture::{AlphaPair, PathProfile, Side};
+use folio_solvers::room::Room;
 
 /// Smallest pattern angle (radians, $1.75\pi$) of a boundary vertex that the disk estimator
 /// reads as a slit, a tip or a notch (module docs): a straight border has $\pi$, a tip
@@ -157,6 +158,20 @@ pub struct Tear<T> {
     pub alpha: AlphaPair,
 }
 
+impl<T: Real> Tear<T> {
+    /// A tear not started yet: opaque masks on `raster`, an empty path with room for
+    /// [`PATH_ROOM`] points.
+    fn pristine(raster: Raster) -> Self {
+        Self {
+            parent: None,
+            tip: None,
+            path: Vec::with_capacity(PATH_ROOM),
+            direction: [T::ZERO; 2],
+            alpha: AlphaPair::new(raster),
+        }
+    }
+}
+
 /// A candidate with its load and fracture energy.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Evaluation<T> {
@@ -223,9 +238,17 @@ pub struct Tears<T: Real> {
     pixels: Vec<(u32, u32)>,
     tip_buffer: Vec<u32>,
     weights: Vec<f64>,
+    /// The cuts' offset bins.
+    profile: PathProfile,
+    /// Tears made at setup ([`TearSettings::reserved_tears`]), opaque and with an empty
+    /// path, taken by [`Tears::start_tear`] (never given back, so always pristine).
+    spare: Vec<Tear<T>>,
     /// Candidates of the last evaluation whose load was not finite.
     non_finite: u32,
 }
+
+/// Path points reserved per tear: a longer path grows its buffer.
+const PATH_ROOM: usize = 256;
 
 impl<T: Real> Tears<T> {
     /// No tears yet, on a sheet whose pattern spans $[0, W] \times [0, H]$ (`size`).
@@ -241,6 +264,14 @@ impl<T: Real> Tears<T> {
             if f64::from(k) < n { k + 1 } else { k }
         };
         let raster = Raster::new(px(size[0]), px(size[1]), size[0], size[1])?;
+        // A detail path is a walk of at most the raster's longer side (it moves one pixel
+        // closer to its end at every step, in both directions at once when it can).
+        let longest_path = raster.width_px().max(raster.height_px()) as usize + 1;
+        let mut profile = PathProfile::default();
+        profile.reserve(longest_path);
+        let spare = (0..settings.reserved_tears)
+            .map(|_| Tear::pristine(raster))
+            .collect();
         Ok(Self {
             fibers: FiberTexture::new(settings.fibers)?,
             settings,
@@ -249,11 +280,27 @@ impl<T: Real> Tears<T> {
             candidates: Vec::new(),
             evaluations: Vec::new(),
             pulls: Vec::new(),
-            pixels: Vec::new(),
+            pixels: Vec::with_capacity(longest_path),
             tip_buffer: Vec::new(),
             weights: Vec::new(),
+            profile,
+            spare,
             non_finite: 0,
         })
+    }
+
+    /// Makes room in the tearing step's buffers for a mesh of `vertices` vertices: a step
+    /// on a mesh within it allocates nothing, unless it starts a tear beyond
+    /// [`TearSettings::reserved_tears`].
+    pub fn reserve(&mut self, vertices: usize) {
+        let tears = self.tears.len() + self.spare.len();
+        self.tears.room_for(tears);
+        self.tip_buffer.room_for(tears);
+        let candidates = self.settings.max_candidates;
+        self.candidates.room_for(candidates);
+        self.evaluations.room_for(candidates);
+        self.pulls.room_for(vertices);
+        self.weights.room_for(vertices);
     }
 
     /// The settings.
@@ -522,25 +569,22 @@ impl<T: Real> Tears<T> {
                 .windows(2)
                 .any(|w| segment_distance(from, w[0], w[1]) <= tolerance)
         });
-        let alpha = match parent {
-            Some(i) => {
-                let d = self.tears[i].direction;
-                let side = if d[0] * t[1] - d[1] * t[0] >= T::ZERO {
-                    Side::Left
-                } else {
-                    Side::Right
-                };
-                self.tears[i].alpha.split_from(side)
-            }
-            None => AlphaPair::new(self.raster),
-        };
-        self.tears.push(Tear {
-            parent,
-            tip: None,
-            path: alloc::vec![from],
-            direction: [T::ZERO; 2],
-            alpha,
-        });
+        let mut tear = self
+            .spare
+            .pop()
+            .unwrap_or_else(|| Tear::pristine(self.raster));
+        if let Some(i) = parent {
+            let d = self.tears[i].direction;
+            let side = if d[0] * t[1] - d[1] * t[0] >= T::ZERO {
+                Side::Left
+            } else {
+                Side::Right
+            };
+            tear.alpha.branch_of(&self.tears[i].alpha, side);
+        }
+        tear.parent = parent;
+        tear.path.push(from);
+        self.tears.push(tear);
         self.tears.len() - 1
     }
 
@@ -564,7 +608,8 @@ impl<T: Real> Tears<T> {
         let pixel = self.raster.pixel_size();
         let band = 4.0 * self.settings.detail.sigma + 2.0 * pixel[0].max(pixel[1]);
         let tear = &mut self.tears[index];
-        tear.alpha.cut(&self.pixels, a, b, band);
+        tear.alpha
+            .cut_with(&mut self.profile, &self.pixels, a, b, band);
         let d = [to[0] - from[0], to[1] - from[1]];
         let len = math::sqrt(d[0] * d[0] + d[1] * d[1]);
         if len > T::ZERO {

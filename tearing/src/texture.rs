@@ -16,6 +16,7 @@ use alloc::vec::Vec;
 use folio_kernels::math;
 
 use crate::detail::Raster;
+use folio_solvers::room::Room;
 
 /// Alpha of an untouched pixel.
 pub const OPAQUE: u8 = 255;
@@ -59,11 +60,20 @@ impl AlphaPair {
     /// mask, so the branch is cut into a lip that already shows the parent's tear.
     #[must_use]
     pub fn split_from(&self, side: Side) -> Self {
-        let parent = self.mask(side).to_vec();
-        Self {
-            raster: self.raster,
-            left: parent.clone(),
-            right: parent,
+        let mut branch = Self::new(self.raster);
+        branch.branch_of(self, side);
+        branch
+    }
+
+    /// Makes this pair the masks of a branch of `parent` on its lip `side`, as
+    /// [`AlphaPair::split_from`] does, in this pair's memory (no allocation when both are on
+    /// the same raster; otherwise this pair takes `parent`'s raster).
+    pub fn branch_of(&mut self, parent: &Self, side: Side) {
+        let mask = parent.mask(side);
+        self.raster = parent.raster;
+        for own in [&mut self.left, &mut self.right] {
+            own.clear();
+            own.extend_from_slice(mask);
         }
     }
 
@@ -112,8 +122,22 @@ impl AlphaPair {
     /// $a \to b$, $b \to c$ compose; at a bend the two bands do not cover the wedge outside
     /// the corner, beyond both segments' ends, which stays as it was. A degenerate segment
     /// ($a = b$ after clamping), a non-finite or non-positive `band` cut the path pixels
-    /// only; path pixels outside the raster are skipped. Allocates the offset bins.
+    /// only; path pixels outside the raster are skipped. Allocates the offset bins: a caller
+    /// that cuts every frame keeps them in a [`PathProfile`] ([`AlphaPair::cut_with`]).
     pub fn cut(&mut self, path: &[(u32, u32)], a: [f64; 2], b: [f64; 2], band: f64) {
+        self.cut_with(&mut PathProfile::default(), path, a, b, band);
+    }
+
+    /// [`AlphaPair::cut`] with its offset bins in `profile`: no allocation while the path
+    /// fits the profile's room ([`PathProfile::reserve`]).
+    pub fn cut_with(
+        &mut self,
+        profile: &mut PathProfile,
+        path: &[(u32, u32)],
+        a: [f64; 2],
+        b: [f64; 2],
+        band: f64,
+    ) {
         let a = self.raster.clamp_point(a);
         let b = self.raster.clamp_point(b);
         let e = [b[0] - a[0], b[1] - a[1]];
@@ -122,8 +146,8 @@ impl AlphaPair {
             let e = [e[0] / length, e[1] / length];
             let n = [-e[1], e[0]];
             let frame = Frame { a, e, n };
-            let profile = Profile::new(&self.raster, path, &frame, length);
-            self.cut_band(&frame, &profile, length, band);
+            profile.fit(&self.raster, path, &frame, length);
+            self.cut_band(&frame, profile, length, band);
         }
         for &pixel in path {
             if let Some(k) = self.raster.index(pixel) {
@@ -138,7 +162,7 @@ impl AlphaPair {
     }
 
     /// Clears the side opposite each band pixel (see [`AlphaPair::cut`]).
-    fn cut_band(&mut self, frame: &Frame, profile: &Profile, length: f64, band: f64) {
+    fn cut_band(&mut self, frame: &Frame, profile: &PathProfile, length: f64, band: f64) {
         let r = self.raster;
         // Pixel box of the band rectangle's four corners.
         let (mut lo, mut hi) = ((u32::MAX, u32::MAX), (0u32, 0u32));
@@ -216,20 +240,35 @@ impl Frame {
     }
 }
 
-/// The path's offset $d_{\text{path}}(s)$ sampled in bins of width `step` from $s = 0$.
-struct Profile {
+/// The path's offset $d_{\text{path}}(s)$ from a cut's segment, sampled in bins of width
+/// `step` from $s = 0$ ([`AlphaPair::cut`]); its buffers are kept from one cut to the next.
+#[derive(Clone, Debug, Default)]
+pub struct PathProfile {
+    sums: Vec<f64>,
+    counts: Vec<u32>,
     offsets: Vec<f64>,
     step: f64,
 }
 
-impl Profile {
+impl PathProfile {
+    /// Room for a path of `pixels` pixels: cuts along shorter paths allocate nothing.
+    pub fn reserve(&mut self, pixels: usize) {
+        let bins = pixels.max(2);
+        self.sums.room_for(bins);
+        self.counts.room_for(bins);
+        self.offsets.room_for(bins);
+    }
+
     /// Bins the path pixels' centres (see [`AlphaPair::cut`]).
-    fn new(raster: &Raster, path: &[(u32, u32)], frame: &Frame, length: f64) -> Self {
+    fn fit(&mut self, raster: &Raster, path: &[(u32, u32)], frame: &Frame, length: f64) {
         let bins = path.len().max(2);
         let step = length / (bins - 1) as f64;
         let last = (bins - 1) as f64;
-        let mut sums = vec![0.0f64; bins];
-        let mut counts = vec![0u32; bins];
+        let (sums, counts, offsets) = (&mut self.sums, &mut self.counts, &mut self.offsets);
+        sums.clear();
+        sums.resize(bins, 0.0);
+        counts.clear();
+        counts.resize(bins, 0);
         for &pixel in path {
             let [s, d] = frame.coordinates(raster.center(pixel));
             let x = (s / step).clamp(0.0, last);
@@ -241,9 +280,10 @@ impl Profile {
             }
         }
         // Means of filled bins; empty bins interpolated between their filled neighbours.
-        let mut offsets = vec![0.0f64; bins];
+        offsets.clear();
+        offsets.resize(bins, 0.0);
         let mut previous: Option<(usize, f64)> = None;
-        for (k, (&sum, &count)) in sums.iter().zip(&counts).enumerate() {
+        for (k, (&sum, &count)) in sums.iter().zip(counts.iter()).enumerate() {
             if count == 0 {
                 continue;
             }
@@ -264,7 +304,7 @@ impl Profile {
                 *slot = dp;
             }
         }
-        Self { offsets, step }
+        self.step = step;
     }
 
     /// $d_{\text{path}}(s)$, linear between bin centres, constant beyond the ends.

@@ -44,6 +44,7 @@ use alloc::vec::Vec;
 use folio_kernels::{Real, Vec3Ops, math};
 
 use super::mesh::{NONE, SheetMesh, next, positive};
+use super::scratch::room;
 
 /// Weight of a triangle's own estimate in the averaging, relative to a neighbour of the same
 /// area (1: a plain area-weighted mean; measured on a cylinder at an angle to the grid, the
@@ -113,6 +114,18 @@ pub struct ConeLayer<T: Real> {
 }
 
 impl<T: Real> ConeLayer<T> {
+    /// Makes room for a mesh of `vertices` vertices and `triangles` triangles in all: an
+    /// update or remesh within it allocates nothing.
+    pub fn reserve(&mut self, vertices: usize, triangles: usize) {
+        room(&mut self.regions, triangles);
+        room(&mut self.curvature, triangles);
+        room(&mut self.rulings, triangles);
+        room(&mut self.shape, triangles);
+        room(&mut self.remesh_rulings, triangles);
+        room(&mut self.remesh_curved, triangles);
+        room(&mut self.junctions, vertices);
+    }
+
     /// The layer of `mesh` as it is deformed now.
     #[must_use]
     pub fn of(mesh: &SheetMesh<T>, settings: &ConeSettings<T>) -> Self {

@@ -15,10 +15,9 @@
 //!   generalized-cone remesh).
 //!
 //! Every edit either succeeds with a valid manifold sheet (checked by
-//! [`SheetMesh::check`]) or returns an error and leaves the sheet as it was. Edits allocate
-//! (they run between physics steps, a few times per frame at most).
-
-use alloc::vec::Vec;
+//! [`SheetMesh::check`]) or returns an error and leaves the sheet as it was. Edits work in
+//! the mesh's own buffers (its `scratch`): within the room made by
+//! [`SheetMesh::reserve`] they allocate nothing.
 
 use folio_kernels::{Real, Vec3Ops};
 
@@ -178,42 +177,55 @@ impl<T: Real> SheetMesh<T> {
         }
         // From the intact adjacency: the triangles of each boundary end on the right of
         // `a → b`. A boundary fan runs counter-clockwise from the boundary, so at `a` they
-        // come before the half-edge `a → b`, at `b` from the half-edge `b → a` on.
-        let mut moves: Vec<(usize, u32, Vec<usize>)> = Vec::new();
+        // come before the half-edge `a → b`, at `b` from the half-edge `b → a` on. The
+        // triangles of both ends go into one buffer: end `slot`'s are `ranges[slot]`.
+        let mut right = core::mem::take(&mut self.scratch.triangles);
+        right.clear();
+        let mut ranges: [Option<(u32, core::ops::Range<usize>)>; 2] = [None, None];
         for (slot, (v, w)) in [(a, b), (b, a)].into_iter().enumerate() {
             if !self.is_boundary(v) {
                 continue;
             }
-            let fan: Vec<u32> = self.fan_iter(v).collect();
-            let j = fan
-                .iter()
-                .position(|&g| self.half_edge(g).1 == w)
-                .ok_or(SheetError::NotInteriorEdge { a, b })?;
-            let right = if slot == 0 { &fan[..j] } else { &fan[j..] };
-            moves.push((slot, v, right.iter().map(|&g| g as usize / 3).collect()));
+            let start = right.len();
+            right.extend(self.fan_iter(v).map(|g| g as usize / 3));
+            let fan = start..right.len();
+            let Some(j) = self.fan_iter(v).position(|g| self.half_edge(g).1 == w) else {
+                self.scratch.triangles = right;
+                return Err(SheetError::NotInteriorEdge { a, b });
+            };
+            ranges[slot] = Some((
+                v,
+                if slot == 0 {
+                    fan.start..fan.start + j
+                } else {
+                    fan.start + j..fan.end
+                },
+            ));
         }
         let mut cut = Cut { splits: [None; 2] };
-        self.edit(|m| {
-            for (slot, v, tris) in &moves {
+        let edited = self.edit(|m| {
+            for (slot, range) in ranges.iter().enumerate() {
+                let Some((v, tris)) = range else {
+                    continue;
+                };
                 let copy = m.pattern.len() as u32;
-                let (p, x, u) = (
-                    m.pattern[*v as usize],
-                    m.positions[*v as usize],
-                    m.velocities[*v as usize],
-                );
+                let i = *v as usize;
+                let (p, x, u) = (m.pattern[i], m.positions[i], m.velocities[i]);
                 m.pattern.push(p);
                 m.positions.push(x);
                 m.velocities.push(u);
-                for &t in tris {
-                    for i in &mut m.triangles[t] {
-                        if *i == *v {
-                            *i = copy;
+                for &t in &right[tris.clone()] {
+                    for corner in &mut m.triangles[t] {
+                        if *corner == *v {
+                            *corner = copy;
                         }
                     }
                 }
-                cut.splits[*slot] = Some((*v, copy));
+                cut.splits[slot] = Some((*v, copy));
             }
-        })?;
+        });
+        self.scratch.triangles = right;
+        edited?;
         Ok(cut)
     }
 
@@ -230,15 +242,16 @@ impl<T: Real> SheetMesh<T> {
             return Err(SheetError::OutOfRange { field: "vertex" });
         }
         let tol = inside_tolerance::<T>();
-        let fan: Vec<usize> = self.fan_iter(v).map(|h| h as usize / 3).collect();
-        let (t, w) = fan
-            .iter()
-            .find_map(|&t| {
+        let (t, w) = self
+            .fan_iter(v)
+            .find_map(|h| {
+                let t = h as usize / 3;
                 let w = self.barycentric(t, p)?;
                 (w[0] >= tol && w[1] >= tol && w[2] >= tol).then_some((t, w))
             })
             .ok_or(SheetError::OutsideSheet)?;
-        for &f in &fan {
+        for h in self.fan_iter(v) {
+            let f = h as usize / 3;
             let corners =
                 self.triangles[f].map(|i| if i == v { p } else { self.pattern[i as usize] });
             if !self.triangle_ok(corners) {
@@ -291,7 +304,7 @@ impl<T: Real> SheetMesh<T> {
     /// Applies a topology edit, checks the result and bumps the versions; restores the sheet
     /// on failure (a sliver becomes [`SheetError::WouldInvert`]).
     fn edit(&mut self, change: impl FnOnce(&mut Self)) -> Result<(), SheetError> {
-        let backup = self.clone();
+        self.save();
         change(self);
         match self.check() {
             Ok(()) => {
@@ -300,7 +313,7 @@ impl<T: Real> SheetMesh<T> {
                 Ok(())
             }
             Err(e) => {
-                *self = backup;
+                self.restore();
                 Err(match e {
                     SheetError::Degenerate { index } => SheetError::WouldInvert { index },
                     other => other,

@@ -13,6 +13,7 @@ use alloc::vec::Vec;
 use folio_kernels::{Real, Vec3Ops, math};
 
 use super::error::SheetError;
+use super::scratch::Scratch;
 
 /// "No half-edge": the twin of a boundary half-edge.
 pub const NONE: u32 = u32::MAX;
@@ -38,6 +39,8 @@ pub struct SheetMesh<T: Real> {
     pub(crate) outgoing: Vec<u32>,
     pub(crate) topology_version: u64,
     pub(crate) shape_version: u64,
+    /// Working buffers of the edits ([`super::scratch`]).
+    pub(crate) scratch: Scratch<T>,
 }
 
 impl<T: Real> SheetMesh<T> {
@@ -60,6 +63,7 @@ impl<T: Real> SheetMesh<T> {
             outgoing: Vec::new(),
             topology_version: 0,
             shape_version: 0,
+            scratch: Scratch::default(),
         };
         mesh.check()?;
         Ok(mesh)
@@ -346,18 +350,24 @@ impl<T: Real> SheetMesh<T> {
             }
         }
         self.rebuild_adjacency()?;
-        let mut seen = alloc::vec![0usize; n];
+        let mut seen = core::mem::take(&mut self.scratch.seen);
+        seen.clear();
+        seen.resize(n, 0);
         for tri in &self.triangles {
             for &i in tri {
                 seen[i as usize] += 1;
             }
         }
-        for (v, &count) in seen.iter().enumerate() {
-            if count == 0 || self.fan_iter(v as u32).count() != count {
-                return Err(SheetError::NonManifoldVertex { index: v });
-            }
-        }
-        Ok(())
+        let bad = seen
+            .iter()
+            .enumerate()
+            .find(|&(v, &count)| count == 0 || self.fan_iter(v as u32).count() != count);
+        let result = match bad {
+            Some((index, _)) => Err(SheetError::NonManifoldVertex { index }),
+            None => Ok(()),
+        };
+        self.scratch.seen = seen;
+        result
     }
 
     /// `true` for a counter-clockwise pattern triangle above the sliver bound.
@@ -370,25 +380,36 @@ impl<T: Real> SheetMesh<T> {
     /// Twins and outgoing half-edges from the triangles.
     pub(crate) fn rebuild_adjacency(&mut self) -> Result<(), SheetError> {
         let m = 3 * self.triangles.len();
-        let mut keys: Vec<(u32, u32, u32)> = Vec::with_capacity(m);
+        let mut keys = core::mem::take(&mut self.scratch.keys);
+        keys.clear();
         for h in 0..m as u32 {
             let (a, b) = self.half_edge(h);
             keys.push((a.min(b), a.max(b), h));
         }
         keys.sort_unstable();
-        self.twins.clear();
-        self.twins.resize(m, NONE);
-        let mut i = 0;
-        while i < keys.len() {
-            let mut j = i + 1;
-            while j < keys.len() && keys[j].0 == keys[i].0 && keys[j].1 == keys[i].1 {
-                j += 1;
+        let paired = self.pair_twins(&keys);
+        self.scratch.keys = keys;
+        paired?;
+        self.outgoing.clear();
+        self.outgoing.resize(self.pattern.len(), NONE);
+        for h in 0..m as u32 {
+            let a = self.half_edge(h).0 as usize;
+            if self.outgoing[a] == NONE || self.twins[h as usize] == NONE {
+                self.outgoing[a] = h;
             }
-            let (a, b) = (keys[i].0, keys[i].1);
-            match j - i {
-                1 => {}
-                2 => {
-                    let (h, g) = (keys[i].2, keys[i + 1].2);
+        }
+        Ok(())
+    }
+
+    /// Twins from the half-edges sorted by their ends (`(low, high, half-edge)`).
+    fn pair_twins(&mut self, keys: &[(u32, u32, u32)]) -> Result<(), SheetError> {
+        self.twins.clear();
+        self.twins.resize(keys.len(), NONE);
+        for same in keys.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+            let (a, b) = (same[0].0, same[0].1);
+            match *same {
+                [_] => {}
+                [(_, _, h), (_, _, g)] => {
                     if self.half_edge(h).0 == self.half_edge(g).0 {
                         return Err(SheetError::NonManifoldEdge { a, b });
                     }
@@ -396,15 +417,6 @@ impl<T: Real> SheetMesh<T> {
                     self.twins[g as usize] = h;
                 }
                 _ => return Err(SheetError::NonManifoldEdge { a, b }),
-            }
-            i = j;
-        }
-        self.outgoing.clear();
-        self.outgoing.resize(self.pattern.len(), NONE);
-        for h in 0..m as u32 {
-            let a = self.half_edge(h).0 as usize;
-            if self.outgoing[a] == NONE || self.twins[h as usize] == NONE {
-                self.outgoing[a] = h;
             }
         }
         Ok(())

@@ -11,8 +11,6 @@
 //! terminate and never lower the smallest angle of the pair. Flips change no vertex, so the
 //! mesh stays as coarse as it was.
 
-use alloc::vec::Vec;
-
 use folio_kernels::Real;
 
 use super::mesh::{NONE, SheetMesh, corner_angle, next};
@@ -59,7 +57,7 @@ impl<T: Real> SheetMesh<T> {
             return 0;
         }
         let mut flips = 0;
-        let mut near: Vec<usize> = Vec::new();
+        let mut near = core::mem::take(&mut self.scratch.triangles);
         while flips < max_flips {
             near.clear();
             for h in self.fan_iter(v) {
@@ -82,6 +80,7 @@ impl<T: Real> SheetMesh<T> {
             }
             flips += 1;
         }
+        self.scratch.triangles = near;
         flips
     }
 

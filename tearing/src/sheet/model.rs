@@ -24,11 +24,22 @@ use super::error::TearingSheetError;
 use super::settings::SheetSettings;
 use crate::release::LoadBuffers;
 use folio_solvers::model::{Model, PotentialSet, TermVisitor};
+use folio_solvers::room::Room;
 
 /// The sheet's terms, masses and held vertices (module docs).
 #[derive(Clone, Debug)]
 pub struct SheetModel<T: Real> {
     version: u64,
+    terms: Terms<T>,
+    /// Where a rebuild fills the new terms before they replace [`SheetModel::terms`] (so a
+    /// rebuild the kernels refuse leaves the model unchanged); it keeps the old terms'
+    /// buffers, and the next rebuild refills them without allocating.
+    spare: Terms<T>,
+}
+
+/// What [`SheetModel`] sums: the held vertices, the lumped masses and the terms.
+#[derive(Clone, Debug)]
+struct Terms<T: Real> {
     held: Vec<bool>,
     masses: Vec<T>,
     membranes: PotentialSet<T, Membrane<T>, 3>,
@@ -48,14 +59,18 @@ impl<T: Real> SheetModel<T> {
     ) -> Result<Self, TearingSheetError> {
         let mut model = Self {
             version: 0,
-            held: Vec::new(),
-            masses: Vec::new(),
-            membranes: PotentialSet::new(T::ONE),
-            hinges: PotentialSet::new(settings.bending),
-            gravity: PotentialSet::new(T::ONE),
+            terms: Terms::empty(settings),
+            spare: Terms::empty(settings),
         };
         model.rebuild(mesh, held, settings)?;
         Ok(model)
+    }
+
+    /// Makes room for a mesh of `vertices` vertices and `triangles` triangles in all: a
+    /// rebuild or reshape within it allocates nothing.
+    pub fn reserve(&mut self, vertices: usize, triangles: usize) {
+        self.terms.reserve(vertices, triangles);
+        self.spare.reserve(vertices, triangles);
     }
 
     /// Rebuilds every term from `mesh` and `held` and bumps the topology version (call it
@@ -70,21 +85,17 @@ impl<T: Real> SheetModel<T> {
         settings: &SheetSettings<T>,
     ) -> Result<(), TearingSheetError> {
         let n = mesh.vertex_count();
-        let mut next = Self {
-            version: self.version + 1,
-            held: alloc::vec![false; n],
-            masses: alloc::vec![T::ZERO; n],
-            membranes: PotentialSet::new(T::ONE),
-            hinges: PotentialSet::new(settings.bending),
-            gravity: PotentialSet::new(T::ONE),
-        };
+        let spare = &mut self.spare;
+        spare.held.clear();
+        spare.held.resize(n, false);
         for &v in held {
-            if let Some(h) = next.held.get_mut(v as usize) {
+            if let Some(h) = spare.held.get_mut(v as usize) {
                 *h = true;
             }
         }
-        next.fill(mesh, settings)?;
-        *self = next;
+        spare.fill(mesh, settings)?;
+        core::mem::swap(&mut self.terms, &mut self.spare);
+        self.version += 1;
         Ok(())
     }
 
@@ -99,23 +110,17 @@ impl<T: Real> SheetModel<T> {
         mesh: &SheetMesh<T>,
         settings: &SheetSettings<T>,
     ) -> Result<(), TearingSheetError> {
-        let mut next = Self {
-            version: self.version,
-            held: self.held.clone(),
-            masses: alloc::vec![T::ZERO; mesh.vertex_count()],
-            membranes: PotentialSet::new(T::ONE),
-            hinges: PotentialSet::new(settings.bending),
-            gravity: PotentialSet::new(T::ONE),
-        };
-        next.fill(mesh, settings)?;
-        *self = next;
+        self.spare.held.clear();
+        self.spare.held.extend_from_slice(&self.terms.held);
+        self.spare.fill(mesh, settings)?;
+        core::mem::swap(&mut self.terms, &mut self.spare);
         Ok(())
     }
 
     /// The membrane kernel of every triangle, in triangle order.
     #[must_use]
     pub fn membranes(&self) -> &PotentialSet<T, Membrane<T>, 3> {
-        &self.membranes
+        &self.terms.membranes
     }
 
     /// What the tearing step reads of every triangle at positions `x`, into `buffers`
@@ -126,8 +131,8 @@ impl<T: Real> SheetModel<T> {
         buffers.eshelby.clear();
         buffers.deformations.clear();
         buffers.prescribed.clear();
-        buffers.prescribed.extend_from_slice(&self.held);
-        for term in self.membranes.terms() {
+        buffers.prescribed.extend_from_slice(&self.terms.held);
+        for term in self.terms.membranes.terms() {
             let local = term.nodes.map(|i| x[i as usize]);
             buffers.gradients.push(term.kernel.gradient(&local));
             buffers.eshelby.push(term.kernel.eshelby(&local));
@@ -140,7 +145,7 @@ impl<T: Real> SheetModel<T> {
     /// ([`Hinge::orient`]): called at the start of each step, so that the bending counts
     /// only the hinges' folds, not in-plane deformation.
     pub fn orient_hinges(&mut self, x: &[T::Vec3]) {
-        for term in self.hinges.terms_mut() {
+        for term in self.terms.hinges.terms_mut() {
             let local = term.nodes.map(|i| x[i as usize]);
             term.kernel.orient(&local);
         }
@@ -149,20 +154,50 @@ impl<T: Real> SheetModel<T> {
     /// The hinges (interior edges).
     #[must_use]
     pub fn hinges(&self) -> &PotentialSet<T, Hinge<T>, 4> {
-        &self.hinges
+        &self.terms.hinges
     }
 
     /// `true` when `node` is held by a finger.
     #[must_use]
     pub fn is_held(&self, node: usize) -> bool {
-        self.held.get(node).copied().unwrap_or(false)
+        self.terms.held.get(node).copied().unwrap_or(false)
+    }
+}
+
+impl<T: Real> Terms<T> {
+    /// No vertex, no term; the hinges weighted by the settings' bending modulus.
+    fn empty(settings: &SheetSettings<T>) -> Self {
+        Self {
+            held: Vec::new(),
+            masses: Vec::new(),
+            membranes: PotentialSet::new(T::ONE),
+            hinges: PotentialSet::new(settings.bending),
+            gravity: PotentialSet::new(T::ONE),
+        }
     }
 
+    /// Room for `vertices` vertices and `triangles` triangles (at most three hinges per
+    /// triangle, one gravity term per vertex).
+    fn reserve(&mut self, vertices: usize, triangles: usize) {
+        self.held.room_for(vertices);
+        self.masses.room_for(vertices);
+        self.membranes.reserve(triangles);
+        self.hinges.reserve(3 * triangles);
+        self.gravity.reserve(vertices);
+    }
+
+    /// Fills the masses and terms of `mesh` (the held vertices are set by the caller).
     fn fill(
         &mut self,
         mesh: &SheetMesh<T>,
         settings: &SheetSettings<T>,
     ) -> Result<(), TearingSheetError> {
+        let n = mesh.vertex_count();
+        self.masses.clear();
+        self.masses.resize(n, T::ZERO);
+        self.membranes.reset(T::ONE);
+        self.hinges.reset(settings.bending);
+        self.gravity.reset(T::ONE);
         let p = mesh.pattern();
         let third = T::ONE / T::from_f64(3.0);
         for (t, tri) in mesh.triangles().iter().enumerate() {
@@ -214,7 +249,7 @@ impl<T: Real> Model<T> for SheetModel<T> {
     }
 
     fn node_count(&self) -> usize {
-        self.masses.len()
+        self.terms.masses.len()
     }
 
     fn is_fixed(&self, node: usize, _axis: usize) -> bool {
@@ -222,12 +257,12 @@ impl<T: Real> Model<T> for SheetModel<T> {
     }
 
     fn mass(&self, node: usize) -> T {
-        self.masses.get(node).copied().unwrap_or(T::ZERO)
+        self.terms.masses.get(node).copied().unwrap_or(T::ZERO)
     }
 
     fn visit_terms<V: TermVisitor<T>>(&self, visitor: &mut V) {
-        visitor.potentials(&self.membranes);
-        visitor.potentials(&self.hinges);
-        visitor.potentials(&self.gravity);
+        visitor.potentials(&self.terms.membranes);
+        visitor.potentials(&self.terms.hinges);
+        visitor.potentials(&self.terms.gravity);
     }
 }

@@ -98,6 +98,11 @@ pub struct SheetSettings<T: Real> {
     /// Propagations per frame at most, each followed by a relaxation step (seed Fig. 4,
     /// step 4).
     pub max_propagations: u32,
+    /// Vertices the sheet makes room for at setup beyond its mesh's (tears and finger pads
+    /// add vertices): in the mesh, the model, the tearing step and the solver, so that a
+    /// frame that tears allocates nothing while the mesh stays within them. In
+    /// [0, 1 048 576]. Default 256 (a tear adds at most three per propagation).
+    pub reserved_vertices: usize,
     /// The effects.
     pub effects: SheetEffects,
     /// The cone layer's thresholds.
@@ -109,8 +114,9 @@ pub struct SheetSettings<T: Real> {
 impl<T: Real> Default for SheetSettings<T> {
     /// A 12 x 9 sheet of 8 x 6 quads (96 triangles), $Y = 0.003$, $\nu = 0.3$, bending
     /// $10^{-5}$, density $10^{-8}$ (stiff at $h = 1/60$: $Y h^2 / m \approx 70$ per node),
-    /// gravity 9.81 when on, finger pads of radius 0.8 (one vertex on this mesh; about 1.4 cm
-    /// if the sheet is an A4 page's 21 cm across), two propagations per frame.
+    /// gravity 9.81 when on, finger pads of radius 0.7 (one vertex on this mesh; about 1.4 cm
+    /// if the sheet is an A4 page's 21 cm across), two propagations per frame, room for 256
+    /// more vertices.
     fn default() -> Self {
         Self {
             width: T::from_f64(12.0),
@@ -126,6 +132,7 @@ impl<T: Real> Default for SheetSettings<T> {
             time_step: T::from_f64(1.0 / 60.0),
             finger_radius: T::from_f64(0.7),
             max_propagations: 2,
+            reserved_vertices: 256,
             effects: SheetEffects::default(),
             cones: ConeSettings::default(),
             tearing: TearSettings::default(),
@@ -181,6 +188,11 @@ impl<T: Real> SheetSettings<T> {
             self.max_propagations <= 64,
             "max_propagations",
             "at most 64",
+        )?;
+        check(
+            self.reserved_vertices <= 1 << 20,
+            "reserved_vertices",
+            "at most 1 048 576",
         )?;
         check(
             self.cones.flat_curvature.is_finite() && self.cones.flat_curvature >= T::ZERO,

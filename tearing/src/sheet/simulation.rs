@@ -23,8 +23,14 @@ use super::error::TearingSheetError;
 use super::model::SheetModel;
 use super::settings::{HingeBending, SheetSettings};
 use folio_solvers::report::StepStatus;
+use folio_solvers::room::Room;
 use folio_solvers::settings::Settings;
 use folio_solvers::step::{Solver, State};
+
+/// Propagations the history makes room for at setup (at least; a slide adds no vertex, so
+/// the history is not bounded by [`SheetSettings::reserved_vertices`]); beyond it the history
+/// grows its buffer, once per doubling.
+const PROPAGATION_ROOM: usize = 1024;
 
 /// A finger holding the sheet: the vertex at its point and, through its pad, every vertex
 /// within [`SheetSettings::finger_radius`] of it.
@@ -121,7 +127,7 @@ impl<T: Real> TearingSheet<T> {
             x: mesh.positions().to_vec(),
             v: mesh.velocities().to_vec(),
         };
-        Ok(Self {
+        let mut sheet = Self {
             layer: ConeLayer::of(&mesh, &settings.cones),
             settings,
             model,
@@ -137,7 +143,26 @@ impl<T: Real> TearingSheet<T> {
             topology_seen: mesh.topology_version(),
             mesh,
             frame: 0,
-        })
+        };
+        sheet.make_room();
+        Ok(sheet)
+    }
+
+    /// Makes room at setup for [`SheetSettings::reserved_vertices`] more vertices than the
+    /// mesh has, in every buffer a frame refills: the mesh's, the model's, the cone layer's,
+    /// the tearing step's, the loads' and the state's (a tear adds at most two triangles per vertex).
+    fn make_room(&mut self) {
+        let extra = self.settings.reserved_vertices;
+        let vertices = self.mesh.vertex_count() + extra;
+        let triangles = self.mesh.triangle_count() + 2 * extra;
+        self.mesh.reserve(vertices, triangles);
+        self.model.reserve(vertices, triangles);
+        self.layer.reserve(vertices, triangles);
+        self.tears.reserve(vertices);
+        self.loads.reserve(triangles, vertices);
+        self.state.x.room_for(vertices);
+        self.state.v.room_for(vertices);
+        self.propagations.room_for(PROPAGATION_ROOM.max(extra));
     }
 
     /// The settings.
@@ -232,6 +257,7 @@ impl<T: Real> TearingSheet<T> {
         self.pads = pads;
         self.centres.push(vertex);
         self.sync_state();
+        self.make_room();
         self.fingers.push(Finger {
             vertex,
             target: centre,
