@@ -12,10 +12,10 @@
 //! $s$ below the dual shift $\delta$), where plain refinement stalls at the rate
 //! $\delta/(s + \delta)$ per step.
 
-use alloc::vec;
 use alloc::vec::Vec;
 use folio_kernels::Real;
 
+use crate::room::{Room, refill};
 use crate::vector::{dot, norm2};
 
 /// The Krylov basis and the Hessenberg least-squares problem of one GMRES cycle.
@@ -65,18 +65,40 @@ impl<T: Real> Gmres<T> {
     /// Allocates a cycle of length `restart` (at least 1) for systems of order `n`.
     #[must_use]
     pub fn new(n: usize, restart: usize) -> Self {
+        let mut gmres = Self {
+            n: 0,
+            restart: 0,
+            basis: Vec::new(),
+            work: Vec::new(),
+            h: Vec::new(),
+            cosine: Vec::new(),
+            sine: Vec::new(),
+            g: Vec::new(),
+            y: Vec::new(),
+        };
+        gmres.reset(n, restart);
+        gmres
+    }
+
+    /// Makes this workspace [`Gmres::new`]'s for order `n` and `restart`, in its own
+    /// buffers: no allocation when they hold it ([`Gmres::reserve`]).
+    pub fn reset(&mut self, n: usize, restart: usize) {
         let m = restart.max(1);
-        Self {
-            n,
-            restart: m,
-            basis: vec![T::ZERO; (m + 1) * n],
-            work: vec![T::ZERO; n],
-            h: vec![T::ZERO; (m + 1) * m],
-            cosine: vec![T::ZERO; m],
-            sine: vec![T::ZERO; m],
-            g: vec![T::ZERO; m + 1],
-            y: vec![T::ZERO; m],
-        }
+        self.n = n;
+        self.restart = m;
+        refill(&mut self.basis, (m + 1) * n, T::ZERO);
+        refill(&mut self.work, n, T::ZERO);
+        refill(&mut self.h, (m + 1) * m, T::ZERO);
+        refill(&mut self.cosine, m, T::ZERO);
+        refill(&mut self.sine, m, T::ZERO);
+        refill(&mut self.g, m + 1, T::ZERO);
+        refill(&mut self.y, m, T::ZERO);
+    }
+
+    /// Room for order `n` at the current restart length.
+    pub fn reserve(&mut self, n: usize) {
+        self.basis.room_for((self.restart + 1) * n);
+        self.work.room_for(n);
     }
 
     /// One cycle (at most `restart` iterations) from the residual `r` $= b - K x$ of `x`:

@@ -1,7 +1,6 @@
 //! One KKT system: its pattern, values, symbolic analysis and numeric factor, with the
 //! symmetric product and the refined solve.
 
-use alloc::vec;
 use alloc::vec::Vec;
 use folio_kernels::Real;
 use folio_kernels::fused::mul_add;
@@ -10,6 +9,7 @@ use crate::gmres::{Gmres, Operator};
 use crate::ldlt::{FactorOutcome, Ldlt};
 use crate::ordering::{Ordering, QUASI_DEFINITE_RESTART, QUASI_DEFINITE_SHIFT};
 use crate::pattern::KktPattern;
+use crate::room::{Room, refill};
 use crate::settings::Parallelism;
 use crate::symbolic::Symbolic;
 use crate::vector::max_abs;
@@ -88,32 +88,87 @@ impl<T: Real> Kkt<T> {
         ordering: Ordering,
         parallelism: Parallelism,
     ) -> Self {
-        let threads = parallelism.threads(pattern.order());
-        let symbolic = if cfg!(feature = "std") && threads == 2 {
-            Symbolic::analyse_split(&pattern, ordering)
-        } else {
-            Symbolic::analyse(&pattern, ordering)
-        };
-        let mut factor = Ldlt::new(&symbolic);
-        factor.set_threads(threads);
-        let n = pattern.order();
-        let quasi_definite = ordering == Ordering::AmdQuasiDefinite;
-        if quasi_definite {
-            factor.set_dual_shift(T::from_f64(QUASI_DEFINITE_SHIFT));
-        }
-        Self {
-            factor,
-            values: vec![T::ZERO; pattern.nnz()],
+        let symbolic = Symbolic::empty();
+        let mut kkt = Self {
+            factor: Ldlt::new(&symbolic),
+            values: Vec::new(),
             symbolic,
             pattern,
-            pivot_scale: vec![T::ONE; n],
+            pivot_scale: Vec::new(),
             equilibration: None,
-            scratch: vec![T::ZERO; n],
-            residual: vec![T::ZERO; n],
-            correction: vec![T::ZERO; n],
-            previous: vec![T::ZERO; n],
+            scratch: Vec::new(),
+            residual: Vec::new(),
+            correction: Vec::new(),
+            previous: Vec::new(),
             factorizations: 0,
-            krylov: quasi_definite.then(|| Gmres::new(n, QUASI_DEFINITE_RESTART)),
+            krylov: None,
+        };
+        kkt.reanalyse(ordering, parallelism);
+        kkt
+    }
+
+    /// Analyses the pattern again (after [`KktPattern::rebuild`] changed it) as
+    /// [`Kkt::with_parallelism`] does, in this system's buffers: on one thread, no allocation
+    /// when they hold the new system ([`Kkt::reserve`]); a split analysis allocates its
+    /// candidates. The equilibration stays on if it was.
+    pub(crate) fn reanalyse(&mut self, ordering: Ordering, parallelism: Parallelism) {
+        let pattern = &self.pattern;
+        let threads = parallelism.threads(pattern.order());
+        if cfg!(feature = "std") && threads == 2 {
+            self.symbolic = Symbolic::analyse_split(pattern, ordering);
+        } else {
+            self.symbolic.reanalyse(pattern, ordering);
+        }
+        self.factor.reset(&self.symbolic);
+        self.factor.set_threads(threads);
+        let n = pattern.order();
+        let quasi_definite = ordering == Ordering::AmdQuasiDefinite;
+        self.factor.set_dual_shift(if quasi_definite {
+            T::from_f64(QUASI_DEFINITE_SHIFT)
+        } else {
+            T::ZERO
+        });
+        refill(&mut self.values, pattern.nnz(), T::ZERO);
+        refill(&mut self.pivot_scale, n, T::ONE);
+        for v in [
+            &mut self.scratch,
+            &mut self.residual,
+            &mut self.correction,
+            &mut self.previous,
+        ] {
+            refill(v, n, T::ZERO);
+        }
+        self.factorizations = 0;
+        if let Some(e) = &mut self.equilibration {
+            e.reset(n);
+        }
+        match (&mut self.krylov, quasi_definite) {
+            (Some(gmres), true) => gmres.reset(n, QUASI_DEFINITE_RESTART),
+            (None, true) => self.krylov = Some(Gmres::new(n, QUASI_DEFINITE_RESTART)),
+            (_, false) => self.krylov = None,
+        }
+    }
+
+    /// Room for a system of order `n` with `nnz` stored entries and `nnz_l` entries in $L$,
+    /// on one thread, in the current index width and refinement.
+    pub fn reserve(&mut self, n: usize, nnz: usize, nnz_l: usize) {
+        self.symbolic.reserve(n, nnz, nnz_l);
+        self.factor.reserve(n, nnz_l);
+        self.values.room_for(nnz);
+        for v in [
+            &mut self.pivot_scale,
+            &mut self.scratch,
+            &mut self.residual,
+            &mut self.correction,
+            &mut self.previous,
+        ] {
+            v.room_for(n);
+        }
+        if let Some(e) = &mut self.equilibration {
+            e.reserve(n);
+        }
+        if let Some(gmres) = &mut self.krylov {
+            gmres.reserve(n);
         }
     }
 
@@ -175,10 +230,14 @@ impl<T: Real> Kkt<T> {
     /// $z = D \tilde K^{-1} D b$. Allocates its buffers when switched on.
     pub fn set_equilibration(&mut self, on: bool) {
         let n = self.pattern.order();
-        self.equilibration = on.then(|| Equilibration {
-            d: vec![T::ONE; n],
-            largest: vec![T::ZERO; n],
-            rhs: vec![T::ZERO; n],
+        self.equilibration = on.then(|| {
+            let mut e = Equilibration {
+                d: Vec::new(),
+                largest: Vec::new(),
+                rhs: Vec::new(),
+            };
+            e.reset(n);
+            e
         });
     }
 
@@ -421,6 +480,20 @@ struct Equilibration<T> {
 }
 
 impl<T: Real> Equilibration<T> {
+    /// $D = I$ and zeroed buffers for order `n`, within their capacity when it suffices.
+    fn reset(&mut self, n: usize) {
+        refill(&mut self.d, n, T::ONE);
+        refill(&mut self.largest, n, T::ZERO);
+        refill(&mut self.rhs, n, T::ZERO);
+    }
+
+    /// Room for order `n`.
+    fn reserve(&mut self, n: usize) {
+        self.d.room_for(n);
+        self.largest.room_for(n);
+        self.rhs.room_for(n);
+    }
+
     /// Recomputes $D$ for `values` (Ruiz: each pass divides $d_i$ by the square root of the
     /// largest magnitude in row $i$ of $D K D$).
     fn update(&mut self, p: &KktPattern, values: &[T]) {

@@ -37,7 +37,6 @@
 //! factor is bit for bit the same whatever the threads. Without the `std` feature a split
 //! analysis is factorized row by row like any other.
 
-use alloc::vec;
 use alloc::vec::Vec;
 use core::ops::Range;
 use folio_kernels::Real;
@@ -47,6 +46,7 @@ use crate::error::SolverError;
 use crate::index::Index;
 use crate::nested_dissection::Split;
 use crate::pattern::NONE;
+use crate::room::{Room, refill};
 use crate::symbolic::{Arrays, Structure, Symbolic};
 
 /// Outcome of one numeric factorization.
@@ -74,7 +74,8 @@ pub enum FactorOutcome {
 /// Owns $L$'s strictly lower values ([`Symbolic::nnz_l`]), the pivots $D$ ($n$), one dense
 /// work vector ($n$), and the row-pattern workspace: the next free position of each column
 /// and the current row's columns ($n$ 32-bit indices each) and a visited bit per column. All
-/// of it is allocated by [`Ldlt::new`] at setup; factorizing and solving allocate nothing.
+/// of it is allocated by [`Ldlt::new`] at setup (or refilled by [`Ldlt::reset`]); factorizing
+/// and solving allocate nothing.
 /// For a split analysis ([`Symbolic::analyse_split`]) it also owns a second work vector,
 /// row list and bit set for half $B$ ($n$ each), the halves' partial separator rows
 /// ($m(m + 1)$ values for a separator of $m$ unknowns) and each half column's first
@@ -121,13 +122,18 @@ struct Workspace<T> {
 }
 
 impl<T: Real> Workspace<T> {
-    /// Zeroed buffers for order `n`.
-    fn new(n: usize) -> Self {
-        Self {
-            y: vec![T::ZERO; n],
-            reach: vec![0; n],
-            seen: vec![0; n.div_ceil(BITS)],
-        }
+    /// Zeroed buffers for order `n` (empty for 0), within their capacity when it suffices.
+    fn reset(&mut self, n: usize) {
+        refill(&mut self.y, n, T::ZERO);
+        refill(&mut self.reach, n, 0);
+        refill(&mut self.seen, n.div_ceil(BITS), 0);
+    }
+
+    /// Room for order `n`.
+    fn reserve(&mut self, n: usize) {
+        self.y.room_for(n);
+        self.reach.room_for(n);
+        self.seen.room_for(n.div_ceil(BITS));
     }
 }
 
@@ -135,28 +141,49 @@ impl<T: Real> Ldlt<T> {
     /// Allocates the values and the workspace for `symbolic`.
     #[must_use]
     pub fn new(symbolic: &Symbolic) -> Self {
-        let n = symbolic.n;
-        Self {
-            l: vec![T::ZERO; symbolic.nnz_l()],
-            d: vec![T::ZERO; n],
-            fill: vec![0; n],
-            first: Workspace::new(n),
-            fingerprint: symbolic.fingerprint,
+        let mut factor = Self {
+            l: Vec::new(),
+            d: Vec::new(),
+            fill: Vec::new(),
+            first: Workspace::default(),
+            fingerprint: 0,
             dual_shift: T::ZERO,
-            second: if symbolic.split.is_some() {
-                Workspace::new(n)
-            } else {
-                Workspace::default()
-            },
-            stash: symbolic.split.map_or(Vec::new(), |split| {
-                let m = n - split.b;
-                vec![T::ZERO; m * (m + 1)]
-            }),
-            top: symbolic.split.map_or(Vec::new(), |split| {
-                separator_ancestors(&symbolic.parent, split.b)
-            }),
+            second: Workspace::default(),
+            stash: Vec::new(),
+            top: Vec::new(),
             threads: 1,
+        };
+        factor.reset(symbolic);
+        factor
+    }
+
+    /// Makes this factor [`Ldlt::new`]'s for `symbolic`, in its own buffers: no allocation
+    /// when they hold it ([`Ldlt::reserve`]). The dual shift is kept; the threads go back
+    /// to 1.
+    pub fn reset(&mut self, symbolic: &Symbolic) {
+        let n = symbolic.n;
+        refill(&mut self.l, symbolic.nnz_l(), T::ZERO);
+        refill(&mut self.d, n, T::ZERO);
+        refill(&mut self.fill, n, 0);
+        self.first.reset(n);
+        self.fingerprint = symbolic.fingerprint;
+        let split = symbolic.split;
+        self.second.reset(if split.is_some() { n } else { 0 });
+        let m = split.map_or(0, |split| n - split.b);
+        refill(&mut self.stash, m * (m + 1), T::ZERO);
+        self.top.clear();
+        if let Some(split) = split {
+            separator_ancestors(&symbolic.parent, split.b, &mut self.top);
         }
+        self.threads = 1;
+    }
+
+    /// Room for a factor of order `n` with `nnz_l` entries in $L$, on one thread.
+    pub fn reserve(&mut self, n: usize, nnz_l: usize) {
+        self.l.room_for(nnz_l);
+        self.d.room_for(n);
+        self.fill.room_for(n);
+        self.first.reserve(n);
     }
 
     /// Sets the static shift $\delta_d \ge 0$ of the constraint pivots (module docs): pivot
@@ -615,9 +642,9 @@ fn walk(
 }
 
 /// The first ancestor at or after `b` of each column below `b` in the elimination tree
-/// `parent` ([`NONE`] for a root below `b`).
-fn separator_ancestors(parent: &[u32], b: usize) -> Vec<u32> {
-    let mut top = vec![NONE; b];
+/// `parent` ([`NONE`] for a root below `b`), into `top`.
+fn separator_ancestors(parent: &[u32], b: usize, top: &mut Vec<u32>) {
+    refill(top, b, NONE);
     for j in (0..b).rev() {
         let p = parent[j];
         top[j] = if p == NONE || p as usize >= b {
@@ -626,7 +653,6 @@ fn separator_ancestors(parent: &[u32], b: usize) -> Vec<u32> {
             top[p as usize]
         };
     }
-    top
 }
 
 /// Zeroes the work vector and the visited bits (after a non-finite pivot, for the next

@@ -97,6 +97,7 @@ use faer::sparse::SymbolicSparseColMatRef;
 use faer::sparse::linalg::amd;
 
 use crate::pattern::{KktPattern, NONE};
+use crate::room::{Room, refill};
 
 /// Which elimination order the symbolic analysis uses.
 #[cfg_attr(
@@ -135,27 +136,98 @@ pub const QUASI_DEFINITE_RESTART: usize = 10;
 /// The permutation `perm[new] = old` of `ordering` on `pattern`.
 #[must_use]
 pub fn permutation(pattern: &KktPattern, ordering: Ordering) -> Vec<u32> {
-    let n = pattern.order();
-    match ordering {
-        Ordering::Natural => (0..n as u32).collect(),
-        Ordering::Amd | Ordering::AmdQuasiDefinite => amd_order(pattern),
-        Ordering::AmdDelayedDuals => delay_duals(pattern, &amd_order(pattern)),
+    let mut perm = Vec::new();
+    permutation_into(pattern, ordering, &mut perm, &mut OrderScratch::default());
+    perm
+}
+
+/// The working memory of [`permutation_into`]: AMD's inverse permutation and its stack,
+/// kept from one analysis to the next.
+#[derive(Default)]
+pub struct OrderScratch {
+    perm_inv: Vec<u32>,
+    stack: Option<MemBuffer>,
+}
+
+impl core::fmt::Debug for OrderScratch {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("OrderScratch")
+            .field("perm_inv", &self.perm_inv.len())
+            .field("stack", &self.stack.is_some())
+            .finish()
     }
 }
 
-/// faer's AMD on the upper pattern (it orders the pattern of $A + A^\top$).
-fn amd_order(pattern: &KktPattern) -> Vec<u32> {
-    let n = pattern.order();
-    let mut perm = vec![0u32; n];
-    let mut perm_inv = vec![0u32; n];
-    let a = SymbolicSparseColMatRef::new_checked(n, n, &pattern.col_ptr, None, &pattern.row_idx);
-    let mut buffer = MemBuffer::new(amd::order_scratch::<u32>(n, pattern.nnz()));
-    let stack = MemStack::new(&mut buffer);
-    if amd::order(&mut perm, &mut perm_inv, a, amd::Control::default(), stack).is_err() {
-        // AMD fails only on allocation-size overflow; fall back to the natural order.
-        return (0..n as u32).collect();
+impl Clone for OrderScratch {
+    /// Empty: the scratch holds nothing from one call to the next.
+    fn clone(&self) -> Self {
+        Self::default()
     }
-    perm
+}
+
+impl OrderScratch {
+    /// Room for AMD on a pattern of order `n` with `nnz` stored entries.
+    pub fn reserve(&mut self, n: usize, nnz: usize) {
+        self.perm_inv.room_for(n);
+        let req = amd::order_scratch::<u32>(n, nnz);
+        let holds = self
+            .stack
+            .as_mut()
+            .is_some_and(|buffer| MemStack::new(buffer).can_hold(req));
+        if !holds {
+            self.stack = Some(MemBuffer::new(req));
+        }
+    }
+}
+
+/// [`permutation`] into `perm`, with its working memory in `scratch`: for the AMD orders,
+/// no allocation when `perm` and `scratch` hold the pattern's ([`OrderScratch::reserve`]);
+/// the delayed order allocates its neighbour lists.
+pub fn permutation_into(
+    pattern: &KktPattern,
+    ordering: Ordering,
+    perm: &mut Vec<u32>,
+    scratch: &mut OrderScratch,
+) {
+    let n = pattern.order();
+    match ordering {
+        Ordering::Natural => {
+            perm.clear();
+            perm.extend(0..n as u32);
+        }
+        Ordering::Amd | Ordering::AmdQuasiDefinite => amd_order(pattern, perm, scratch),
+        Ordering::AmdDelayedDuals => {
+            amd_order(pattern, perm, scratch);
+            let delayed = delay_duals(pattern, perm);
+            perm.clear();
+            perm.extend_from_slice(&delayed);
+        }
+    }
+}
+
+/// faer's AMD on the upper pattern (it orders the pattern of $A + A^\top$), into `perm`.
+fn amd_order(pattern: &KktPattern, perm: &mut Vec<u32>, scratch: &mut OrderScratch) {
+    let n = pattern.order();
+    scratch.reserve(n, pattern.nnz());
+    refill(perm, n, 0);
+    refill(&mut scratch.perm_inv, n, 0);
+    let a = SymbolicSparseColMatRef::new_checked(n, n, &pattern.col_ptr, None, &pattern.row_idx);
+    let ordered = scratch.stack.as_mut().is_some_and(|buffer| {
+        let stack = MemStack::new(buffer);
+        amd::order(
+            perm,
+            &mut scratch.perm_inv,
+            a,
+            amd::Control::default(),
+            stack,
+        )
+        .is_ok()
+    });
+    if !ordered {
+        // AMD fails only on allocation-size overflow; fall back to the natural order.
+        perm.clear();
+        perm.extend(0..n as u32);
+    }
 }
 
 /// `order` with every constraint row moved to just after the last of its primal neighbours

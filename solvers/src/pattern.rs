@@ -16,6 +16,7 @@ use folio_kernels::{Constraint, Potential, Real};
 
 use crate::error::SolverError;
 use crate::model::{ConstraintSet, Model, PotentialSet, TermVisitor};
+use crate::room::{Room, refill, scaled};
 
 /// Marks an eliminated coordinate or a dropped (lower-triangle) entry in the maps.
 pub const NONE: u32 = u32::MAX;
@@ -177,56 +178,97 @@ impl KktPattern {
         model: &M,
         with_constraint_hessian: bool,
     ) -> Result<Self, SolverError> {
+        let mut pattern = Self::default();
+        pattern.rebuild(model, with_constraint_hessian, &mut Vec::new())?;
+        Ok(pattern)
+    }
+
+    /// [`KktPattern::build`] into this pattern's buffers, with `entries` as the buffer of
+    /// the entries' keys: no allocation when the buffers hold the new pattern. Returns how
+    /// many keys `entries` held before duplicates merged (the room it needed). On error the
+    /// pattern is left partly built (rebuild it before use).
+    ///
+    /// # Errors
+    /// As [`KktPattern::build`].
+    pub fn rebuild<T: Real, M: Model<T>>(
+        &mut self,
+        model: &M,
+        with_constraint_hessian: bool,
+        entries: &mut Vec<u64>,
+    ) -> Result<usize, SolverError> {
         let node_count = model.node_count();
         if node_count.saturating_mul(3) >= NONE as usize {
             return Err(SolverError::TooLarge);
         }
-        let mut dof_of = Vec::with_capacity(3 * node_count);
-        let mut coordinate_of = Vec::new();
+        self.dof_of.clear();
+        self.coordinate_of.clear();
         for c in 0..3 * node_count {
             if model.is_fixed(c / 3, c % 3) {
-                dof_of.push(NONE);
+                self.dof_of.push(NONE);
             } else {
-                dof_of.push(coordinate_of.len() as u32);
-                coordinate_of.push(c as u32);
+                self.dof_of.push(self.coordinate_of.len() as u32);
+                self.coordinate_of.push(c as u32);
             }
         }
+        let mut families = core::mem::take(&mut self.families);
+        let mut local_dofs = core::mem::take(&mut self.local_dofs);
+        families.clear();
+        local_dofs.clear();
+        entries.clear();
         let mut declare = Declare {
-            dof_of: &dof_of,
-            dofs: coordinate_of.len(),
+            dof_of: &self.dof_of,
+            dofs: self.coordinate_of.len(),
             node_count,
             with_constraint_hessian,
-            families: Vec::new(),
-            local_dofs: Vec::new(),
-            entries: Vec::new(),
+            families,
+            local_dofs,
+            entries,
             rows: 0,
             jacobian_len: 0,
             error: None,
         };
         model.visit_terms(&mut declare);
-        if let Some(e) = declare.error {
-            return Err(e);
-        }
-        let (families, mut local_dofs, rows) = (declare.families, declare.local_dofs, declare.rows);
-        local_dofs.shrink_to_fit();
-        let jacobian_len = declare.jacobian_len;
-        let dofs = coordinate_of.len();
-        let (col_ptr, row_idx) = compress(declare.entries, dofs + rows)?;
-        let mut pattern = Self {
-            dofs,
-            rows,
-            dof_of,
-            coordinate_of,
-            col_ptr,
-            row_idx,
+        let Declare {
             families,
             local_dofs,
-            hessian_slots: Vec::new(),
-            jacobian_slots: Vec::with_capacity(jacobian_len),
-            with_constraint_hessian,
-        };
-        pattern.fill_slots();
-        Ok(pattern)
+            rows,
+            jacobian_len,
+            error,
+            ..
+        } = declare;
+        self.families = families;
+        self.local_dofs = local_dofs;
+        if let Some(e) = error {
+            return Err(e);
+        }
+        self.dofs = self.coordinate_of.len();
+        self.rows = rows;
+        self.with_constraint_hessian = with_constraint_hessian;
+        let keys = compress(
+            entries,
+            self.dofs + rows,
+            &mut self.col_ptr,
+            &mut self.row_idx,
+        )?;
+        self.jacobian_slots.clear();
+        self.jacobian_slots.reserve(jacobian_len);
+        self.fill_slots();
+        Ok(keys)
+    }
+
+    /// Room for a pattern `scale` times this one's size (every array in proportion).
+    pub fn reserve_scaled(&mut self, scale: f64) {
+        for v in [
+            &mut self.dof_of,
+            &mut self.coordinate_of,
+            &mut self.col_ptr,
+            &mut self.row_idx,
+            &mut self.local_dofs,
+            &mut self.hessian_slots,
+            &mut self.jacobian_slots,
+        ] {
+            v.room_for(scaled(v.len(), scale));
+        }
     }
 
     /// Slot of upper-triangle entry `(row, col)`, `row <= col`; setup only (binary search).
@@ -313,7 +355,7 @@ struct Declare<'a> {
     families: Vec<Family>,
     local_dofs: Vec<u32>,
     /// `(col << 32) | row` keys of upper-triangle entries.
-    entries: Vec<u64>,
+    entries: &'a mut Vec<u64>,
     rows: usize,
     jacobian_len: usize,
     error: Option<SolverError>,
@@ -393,32 +435,39 @@ impl Declare<'_> {
     }
 }
 
-/// Compressed upper columns `(col_ptr, row_idx)` of order `order` from `(col << 32) | row`
-/// keys, with every diagonal entry added: `order + 1` column pointers, rows sorted within
-/// each column, duplicates merged.
+/// Compressed upper columns of order `order` from `(col << 32) | row` keys, with every
+/// diagonal entry added, into `col_ptr` (`order + 1` pointers) and `row_idx` (rows sorted
+/// within each column, duplicates merged). Sorts `entries` in place; returns how many keys
+/// it held before they merged.
 ///
 /// # Errors
 /// [`SolverError::TooLarge`] beyond 32-bit indices.
-fn compress(mut entries: Vec<u64>, order: usize) -> Result<(Vec<u32>, Vec<u32>), SolverError> {
+fn compress(
+    entries: &mut Vec<u64>,
+    order: usize,
+    col_ptr: &mut Vec<u32>,
+    row_idx: &mut Vec<u32>,
+) -> Result<usize, SolverError> {
     if order >= NONE as usize {
         return Err(SolverError::TooLarge);
     }
     entries.extend((0..order as u64).map(|k| (k << 32) | k));
+    let keys = entries.len();
     entries.sort_unstable();
     entries.dedup();
     if entries.len() >= NONE as usize {
         return Err(SolverError::TooLarge);
     }
-    let mut col_ptr = alloc::vec![0u32; order + 1];
-    let mut row_idx = Vec::with_capacity(entries.len());
-    for &key in &entries {
+    refill(col_ptr, order + 1, 0);
+    row_idx.clear();
+    for &key in entries.iter() {
         col_ptr[(key >> 32) as usize + 1] += 1;
         row_idx.push(key as u32);
     }
     for k in 0..order {
         col_ptr[k + 1] += col_ptr[k];
     }
-    Ok((col_ptr, row_idx))
+    Ok(keys)
 }
 
 impl<T: Real> TermVisitor<T> for Declare<'_> {

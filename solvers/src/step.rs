@@ -30,6 +30,7 @@ use crate::normal_equations::NormalEquations;
 use crate::ordering::Ordering;
 use crate::pattern::KktPattern;
 use crate::report::{StepReport, StepStatus};
+use crate::room::{Room, refill, scaled};
 use crate::settings::{Parallelism, Settings};
 use crate::vector::max_abs;
 
@@ -93,6 +94,10 @@ struct Workspace<T: Real> {
     /// Per node, a contact the projection let go of in this call: the node was held along
     /// a normal and the constraints pulled it off its surface ([`projection::Pins`]).
     released: Vec<bool>,
+    /// The pattern's entry keys while it is rebuilt ([`KktPattern::rebuild`]).
+    entries: Vec<u64>,
+    /// How many keys the last rebuild held before they merged (0 before the first).
+    keys: usize,
 }
 
 impl<T: Real> Workspace<T> {
@@ -106,34 +111,122 @@ impl<T: Real> Workspace<T> {
         nodes: usize,
         projects: bool,
     ) -> Self {
-        let (dofs, rows) = (pattern.dofs, pattern.rows);
-        let normal = projects.then(|| NormalEquations::new(&pattern));
         let mut kkt = Kkt::with_parallelism(pattern, s.ordering, s.parallelism);
         kkt.set_equilibration(s.equilibrate);
-        let n = dofs + rows;
-        Self {
+        let mut work = Self {
             version,
             ordering: s.ordering,
             equilibrate: s.equilibrate,
             parallelism: s.parallelism,
             kkt,
-            rhs: vec![T::ZERO; n],
-            product: vec![T::ZERO; n],
-            solution: vec![T::ZERO; n],
-            gradient: vec![T::ZERO; dofs],
-            constraint: vec![T::ZERO; rows],
-            lambda: vec![T::ZERO; rows],
-            mass: vec![T::ZERO; dofs],
-            x_prev: vec![T::ZERO; dofs],
-            x_bar: vec![T::ZERO; dofs],
-            x: vec![T::Vec3::ZERO; nodes],
-            trial: vec![T::Vec3::ZERO; nodes],
+            rhs: Vec::new(),
+            product: Vec::new(),
+            solution: Vec::new(),
+            gradient: Vec::new(),
+            constraint: Vec::new(),
+            lambda: Vec::new(),
+            mass: Vec::new(),
+            x_prev: Vec::new(),
+            x_bar: Vec::new(),
+            x: Vec::new(),
+            trial: Vec::new(),
             factored: false,
-            normal,
-            released: vec![false; nodes],
+            normal: None,
+            released: Vec::new(),
+            entries: Vec::new(),
+            keys: 0,
+        };
+        work.size_vectors(nodes, projects);
+        work
+    }
+
+    /// The workspace of `model`'s topology in this one's buffers, as [`Workspace::new`]
+    /// makes it: no allocation when they hold it ([`Solver::reserve`]), on one thread and
+    /// without the normal equations (which are built anew).
+    ///
+    /// # Errors
+    /// As [`KktPattern::build`]; the workspace must not be used then.
+    fn reanalyse<M: Model<T>>(
+        &mut self,
+        model: &M,
+        s: &Settings<T>,
+        projects: bool,
+    ) -> Result<(), SolverError> {
+        self.keys = self
+            .kkt
+            .pattern
+            .rebuild(model, s.constraint_hessian, &mut self.entries)?;
+        if self.equilibrate != s.equilibrate {
+            self.kkt.set_equilibration(s.equilibrate);
         }
+        self.kkt.reanalyse(s.ordering, s.parallelism);
+        self.version = model.topology_version();
+        self.ordering = s.ordering;
+        self.equilibrate = s.equilibrate;
+        self.parallelism = s.parallelism;
+        self.size_vectors(model.node_count(), projects);
+        Ok(())
+    }
+
+    /// Zeroed step vectors for the KKT system's pattern and `nodes` nodes, and the normal
+    /// equations when the solver `projects`.
+    fn size_vectors(&mut self, nodes: usize, projects: bool) {
+        let pattern = &self.kkt.pattern;
+        let (dofs, rows) = (pattern.dofs, pattern.rows);
+        let n = dofs + rows;
+        self.normal = projects.then(|| NormalEquations::new(pattern));
+        for v in [&mut self.rhs, &mut self.product, &mut self.solution] {
+            refill(v, n, T::ZERO);
+        }
+        for v in [
+            &mut self.gradient,
+            &mut self.mass,
+            &mut self.x_prev,
+            &mut self.x_bar,
+        ] {
+            refill(v, dofs, T::ZERO);
+        }
+        refill(&mut self.constraint, rows, T::ZERO);
+        refill(&mut self.lambda, rows, T::ZERO);
+        refill(&mut self.x, nodes, T::Vec3::ZERO);
+        refill(&mut self.trial, nodes, T::Vec3::ZERO);
+        refill(&mut self.released, nodes, false);
+        self.factored = false;
+    }
+
+    /// Room for a topology `scale` times this one's size (module docs of
+    /// [`Solver::reserve`]).
+    fn reserve_scaled(&mut self, scale: f64) {
+        let k = &self.kkt;
+        let (n, nnz, nnz_l) = (k.pattern.order(), k.pattern.nnz(), k.symbolic().nnz_l());
+        let grown = |len: usize| scaled(len, scale);
+        self.kkt
+            .reserve(grown(n), grown(nnz), scaled(nnz_l, FILL_GROWTH * scale));
+        self.kkt.pattern.reserve_scaled(scale);
+        self.entries.room_for(grown(self.keys.max(nnz)));
+        for v in [
+            &mut self.rhs,
+            &mut self.product,
+            &mut self.solution,
+            &mut self.gradient,
+            &mut self.constraint,
+            &mut self.lambda,
+            &mut self.mass,
+            &mut self.x_prev,
+            &mut self.x_bar,
+        ] {
+            v.room_for(grown(v.len()));
+        }
+        self.x.room_for(grown(self.x.len()));
+        self.trial.room_for(grown(self.trial.len()));
+        self.released.room_for(grown(self.released.len()));
     }
 }
+
+/// How much faster than the system's order [`Solver::reserve`] lets the factor's fill grow:
+/// the fill of a mesh's matrix under a minimum-degree order grows like $n \log n$ in 2D, a
+/// little faster than $n$.
+const FILL_GROWTH: f64 = 2.0;
 
 /// The time stepper: settings, and the symbolic analysis and buffers of the last topology it
 /// saw.
@@ -144,7 +237,9 @@ impl<T: Real> Workspace<T> {
 /// row or node for the rest). The workspace is allocated at setup: the first step,
 /// [`Solver::analyse`] or [`Solver::linearize`], or a step after a change of topology
 /// version, ordering, constraint-Hessian switch or equilibration. Every other step
-/// allocates nothing. A solver whose caller projects ([`Solver::project_constraints`])
+/// allocates nothing. A later analysis refills the workspace's buffers, and after
+/// [`Solver::reserve`] made room for the model's growth it allocates nothing either (on one
+/// thread, for the AMD orders, without projection). A solver whose caller projects ([`Solver::project_constraints`])
 /// also holds the projection's normal equations, from [`Solver::analyse_projection`] on;
 /// one that never projects does not build them. Once built, every later analysis builds
 /// them too.
@@ -204,6 +299,21 @@ impl<T: Real> Solver<T> {
         self.work.as_ref().map(|w| w.rhs.as_slice())
     }
 
+    /// Makes room, at setup, for a model of the same kind as the analysed one with up to
+    /// `nodes` nodes (a mesh that will grow, such as a tearing sheet's): every buffer of the
+    /// workspace grows in proportion to the node count, and the factor's fill twice as fast.
+    /// A later analysis of a model within that room, on one thread and in the same index
+    /// width, allocates nothing (faer's AMD included: its stack is kept). Returns `false`
+    /// (and does nothing) before the first analysis.
+    pub fn reserve(&mut self, nodes: usize) -> bool {
+        let Some(w) = &mut self.work else {
+            return false;
+        };
+        let now = w.x.len().max(1);
+        w.reserve_scaled(nodes as f64 / now as f64);
+        true
+    }
+
     /// Runs the symbolic analysis for `model` unless the current one is still valid; returns
     /// whether it ran.
     ///
@@ -222,10 +332,22 @@ impl<T: Real> Solver<T> {
             }
         }
         // A solver that projected keeps projecting: its new workspace gets normal equations.
-        let projects = self.work.take().is_some_and(|w| w.normal.is_some());
-        let pattern = KktPattern::build(model, s.constraint_hessian)?;
-        let (version, nodes) = (model.topology_version(), model.node_count());
-        self.work = Some(Workspace::new(pattern, s, version, nodes, projects));
+        // A workspace is analysed again in its own buffers; on error it is dropped.
+        let mut work = self.work.take();
+        let projects = work.as_ref().is_some_and(|w| w.normal.is_some());
+        match &mut work {
+            Some(w) => w.reanalyse(model, s, projects)?,
+            None => {
+                let (mut pattern, mut entries) = (KktPattern::default(), Vec::new());
+                let keys = pattern.rebuild(model, s.constraint_hessian, &mut entries)?;
+                let (version, nodes) = (model.topology_version(), model.node_count());
+                let mut w = Workspace::new(pattern, s, version, nodes, projects);
+                w.entries = entries;
+                w.keys = keys;
+                work = Some(w);
+            }
+        }
+        self.work = work;
         Ok(true)
     }
 

@@ -12,8 +12,9 @@ use alloc::vec::Vec;
 
 use crate::index::{Index, Indices};
 use crate::nested_dissection::{Split, split_candidates};
-use crate::ordering::{Ordering, permutation};
+use crate::ordering::{OrderScratch, Ordering, permutation_into};
 use crate::pattern::{KktPattern, NONE};
+use crate::room::{Room, refill};
 
 /// Indices-only analysis of a KKT pattern of order $n$ (see module docs).
 ///
@@ -22,7 +23,8 @@ use crate::pattern::{KktPattern, NONE};
 /// stored entry) and the structure of $L$ ($n + 1$ column pointers, a row index per
 /// nonzero). Pointers and the permutation are 32-bit; rows and slots are 16-bit when
 /// $n \le 65536$ and $\mathrm{nnz}(A) \le 65536$, 32-bit otherwise ([`Symbolic::indices`]). All
-/// of it is allocated by [`Symbolic::analyse`] at setup (once per topology). Nothing here
+/// of it is allocated by [`Symbolic::analyse`] at setup (once per topology), or refilled by
+/// [`Symbolic::reanalyse`] within the room of [`Symbolic::reserve`]. Nothing here
 /// changes afterwards, and the numeric phase ([`crate::ldlt::Ldlt`]) allocates nothing.
 /// Fields are read through the accessors; an [`crate::ldlt::Ldlt`] made for one analysis
 /// refuses any other.
@@ -51,6 +53,27 @@ pub struct Symbolic {
     pub(crate) fingerprint: u64,
     /// The two halves and the separator of a split order ([`Symbolic::analyse_split`]).
     pub(crate) split: Option<Split>,
+    /// Working memory of [`Symbolic::reanalyse`], kept between analyses.
+    scratch: AnalysisScratch,
+}
+
+/// The working memory of an analysis: the order's, the inverse permutation, and the
+/// per-column marks and counters of the tree and column walks.
+#[derive(Debug, Default)]
+struct AnalysisScratch {
+    order: OrderScratch,
+    inverse: Vec<u32>,
+    next: Vec<u32>,
+    row_empty: Vec<bool>,
+    mark: Vec<u32>,
+    ancestor: Vec<u32>,
+}
+
+impl Clone for AnalysisScratch {
+    /// Empty: the scratch holds nothing from one analysis to the next.
+    fn clone(&self) -> Self {
+        Self::default()
+    }
 }
 
 /// The index arrays of a [`Symbolic`] in one of the two widths.
@@ -78,7 +101,59 @@ impl Symbolic {
     /// Analyses `pattern` under `ordering`.
     #[must_use]
     pub fn analyse(pattern: &KktPattern, ordering: Ordering) -> Self {
-        Self::of_permutation(pattern, permutation(pattern, ordering))
+        let mut symbolic = Self::empty();
+        symbolic.reanalyse(pattern, ordering);
+        symbolic
+    }
+
+    /// [`Symbolic::analyse`] into this analysis's arrays, which it replaces: no allocation
+    /// when they hold the new analysis (and the index width stays), for the AMD orders.
+    pub fn reanalyse(&mut self, pattern: &KktPattern, ordering: Ordering) {
+        let mut perm = core::mem::take(&mut self.perm);
+        permutation_into(pattern, ordering, &mut perm, &mut self.scratch.order);
+        self.of_permutation_into(pattern, perm);
+    }
+
+    /// Room for an analysis of order `n` with `nnz` stored entries and `nnz_l` entries in
+    /// $L$ (in the index width of the current analysis; a change of width allocates).
+    pub fn reserve(&mut self, n: usize, nnz: usize, nnz_l: usize) {
+        for v in [
+            &mut self.perm,
+            &mut self.a_ptr,
+            &mut self.parent,
+            &mut self.l_ptr,
+        ] {
+            v.room_for(n + 1);
+        }
+        self.signs.room_for(n);
+        self.structural_zero.room_for(n);
+        let s = &mut self.scratch;
+        s.order.reserve(n, nnz);
+        for v in [&mut s.inverse, &mut s.next, &mut s.mark, &mut s.ancestor] {
+            v.room_for(n + 1);
+        }
+        s.row_empty.room_for(n);
+        match &mut self.structure {
+            Structure::Narrow(a) => a.reserve(nnz, nnz_l),
+            Structure::Wide(a) => a.reserve(nnz, nnz_l),
+        }
+    }
+
+    /// An analysis of nothing (order 0), to be filled.
+    pub(crate) fn empty() -> Self {
+        Self {
+            n: 0,
+            perm: Vec::new(),
+            signs: Vec::new(),
+            a_ptr: Vec::new(),
+            structural_zero: Vec::new(),
+            parent: Vec::new(),
+            l_ptr: vec![0],
+            structure: Structure::Narrow(Arrays::default()),
+            fingerprint: 0,
+            split: None,
+            scratch: AnalysisScratch::default(),
+        }
     }
 
     /// Analyses `pattern` in a split order ([`crate::nested_dissection`]): two halves, each
@@ -120,59 +195,98 @@ impl Symbolic {
     /// The analysis of `pattern` in the order `perm` (`perm[new] = old`), in the narrowest
     /// index width that holds it.
     fn of_permutation(pattern: &KktPattern, perm: Vec<u32>) -> Self {
+        let mut symbolic = Self::empty();
+        symbolic.of_permutation_into(pattern, perm);
+        symbolic
+    }
+
+    /// [`Symbolic::of_permutation`] into this analysis's arrays.
+    fn of_permutation_into(&mut self, pattern: &KktPattern, perm: Vec<u32>) {
         let n = pattern.order();
-        let signs: Vec<i8> = (0..n).map(|k| signs_of(&perm, pattern.dofs, k)).collect();
+        self.perm = perm;
+        self.signs.clear();
+        self.signs
+            .extend((0..n).map(|k| signs_of(&self.perm, pattern.dofs, k)));
+        let old = core::mem::replace(&mut self.structure, Structure::Narrow(Arrays::default()));
         if n <= u16::MAX as usize + 1 && pattern.nnz() <= u16::MAX as usize + 1 {
-            Self::build::<u16>(pattern, perm, signs, Structure::Narrow)
+            let arrays = match old {
+                Structure::Narrow(a) => a,
+                Structure::Wide(_) => Arrays::default(),
+            };
+            self.fill(pattern, arrays, Structure::Narrow);
         } else {
-            Self::build::<u32>(pattern, perm, signs, Structure::Wide)
+            let arrays = match old {
+                Structure::Wide(a) => a,
+                Structure::Narrow(_) => Arrays::default(),
+            };
+            self.fill(pattern, arrays, Structure::Wide);
         }
     }
 
     /// [`Symbolic::analyse`] with indices of type `I` (each at most `I::MAX`), wrapped by
     /// `wrap`.
+    #[cfg(test)]
     pub(crate) fn build<I: Index>(
         pattern: &KktPattern,
         perm: Vec<u32>,
         signs: Vec<i8>,
         wrap: fn(Arrays<I>) -> Structure,
     ) -> Self {
+        let mut symbolic = Self::empty();
+        symbolic.perm = perm;
+        symbolic.signs = signs;
+        symbolic.fill(pattern, Arrays::default(), wrap);
+        symbolic
+    }
+
+    /// Fills everything but the permutation and the signs (set already) for `pattern`, with
+    /// indices of type `I` in `arrays`, wrapped by `wrap`.
+    fn fill<I: Index>(
+        &mut self,
+        pattern: &KktPattern,
+        mut arrays: Arrays<I>,
+        wrap: fn(Arrays<I>) -> Structure,
+    ) {
         let n = pattern.order();
-        let mut inverse = vec![0u32; n];
-        for (new, &old) in perm.iter().enumerate() {
-            inverse[old as usize] = new as u32;
+        let s = &mut self.scratch;
+        refill(&mut s.inverse, n, 0);
+        for (new, &old) in self.perm.iter().enumerate() {
+            s.inverse[old as usize] = new as u32;
         }
-        let (a_ptr, a_row, a_slot) = permuted_upper::<I>(pattern, &inverse);
-        drop(inverse);
-        let parent = elimination_tree(n, &a_ptr, &a_row);
-        let (l_ptr, row_empty) = column_counts(&a_ptr, &a_row, &parent);
-        let structural_zero = (0..n).map(|k| signs[k] < 0 && row_empty[k]).collect();
-        drop(row_empty);
-        let l_row = column_rows::<I>(&a_ptr, &a_row, &parent, &l_ptr);
-        let fingerprint = Fingerprint::new()
-            .words(&perm, |&w| w)
-            .words(&a_ptr, |&w| w)
-            .words(&a_row, |w| w.get() as u32)
-            .words(&a_slot, |w| w.get() as u32)
-            .words(&l_ptr, |&w| w)
-            .all(&signs, |&s| u32::from(s > 0))
+        let a = &mut arrays;
+        permuted_upper(pattern, &s.inverse, &mut self.a_ptr, a, &mut s.next);
+        elimination_tree(n, &self.a_ptr, &a.a_row, &mut self.parent, &mut s.ancestor);
+        column_counts(
+            &self.a_ptr,
+            &a.a_row,
+            &self.parent,
+            &mut self.l_ptr,
+            &mut s.row_empty,
+            &mut s.mark,
+        );
+        self.structural_zero.clear();
+        self.structural_zero
+            .extend((0..n).map(|k| self.signs[k] < 0 && s.row_empty[k]));
+        column_rows(
+            &self.a_ptr,
+            &a.a_row,
+            &self.parent,
+            &self.l_ptr,
+            &mut a.l_row,
+            &mut s.next,
+            &mut s.mark,
+        );
+        self.fingerprint = Fingerprint::new()
+            .words(&self.perm, |&w| w)
+            .words(&self.a_ptr, |&w| w)
+            .words(&a.a_row, |w| w.get() as u32)
+            .words(&a.a_slot, |w| w.get() as u32)
+            .words(&self.l_ptr, |&w| w)
+            .all(&self.signs, |&s| u32::from(s > 0))
             .finish();
-        Self {
-            n,
-            perm,
-            signs,
-            structural_zero,
-            a_ptr,
-            parent,
-            l_ptr,
-            structure: wrap(Arrays {
-                a_row,
-                a_slot,
-                l_row,
-            }),
-            fingerprint,
-            split: None,
-        }
+        self.n = n;
+        self.structure = wrap(arrays);
+        self.split = None;
     }
 
     /// Matrix order $n$ (`dofs + rows` of the analysed pattern).
@@ -296,67 +410,107 @@ pub enum IndexWidth {
     U32,
 }
 
-/// The upper triangle of $P A P^\top$ in compressed columns: `(a_ptr, a_row, a_slot)`, with
-/// `n + 1` column pointers and, per entry, its row (new index) and its slot in the
-/// pattern's value array. Entry $(r, c)$ lands in column $\max(r', c')$ at row $\min$.
-fn permuted_upper<I: Index>(pattern: &KktPattern, inverse: &[u32]) -> (Vec<u32>, Vec<I>, Vec<I>) {
+impl<I> Default for Arrays<I> {
+    fn default() -> Self {
+        Self {
+            a_row: Vec::new(),
+            a_slot: Vec::new(),
+            l_row: Vec::new(),
+        }
+    }
+}
+
+impl<I: Index> Arrays<I> {
+    /// Room for `nnz` stored entries and `nnz_l` entries of $L$.
+    fn reserve(&mut self, nnz: usize, nnz_l: usize) {
+        self.a_row.room_for(nnz);
+        self.a_slot.room_for(nnz);
+        self.l_row.room_for(nnz_l);
+    }
+}
+
+/// The upper triangle of $P A P^\top$ in compressed columns: `a_ptr` ($n + 1$ column
+/// pointers) and, per entry, its row (new index) and its slot in the pattern's value array
+/// (`arrays.a_row`, `arrays.a_slot`); `next` is scratch. Entry $(r, c)$ lands in column
+/// $\max(r', c')$ at row $\min$.
+fn permuted_upper<I: Index>(
+    pattern: &KktPattern,
+    inverse: &[u32],
+    a_ptr: &mut Vec<u32>,
+    arrays: &mut Arrays<I>,
+    next: &mut Vec<u32>,
+) {
     let n = pattern.order();
-    let mut a_ptr = vec![0u32; n + 1];
+    refill(a_ptr, n + 1, 0);
     for c in 0..n {
         for &r in &pattern.row_idx[pattern.col_ptr[c] as usize..pattern.col_ptr[c + 1] as usize] {
             let (i, j) = (inverse[r as usize], inverse[c]);
             a_ptr[i.max(j) as usize + 1] += 1;
         }
     }
-    prefix_sum(&mut a_ptr);
-    let mut next = a_ptr.clone();
-    let mut a_row = vec![I::new(0); pattern.nnz()];
-    let mut a_slot = vec![I::new(0); pattern.nnz()];
+    prefix_sum(a_ptr);
+    next.clear();
+    next.extend_from_slice(a_ptr);
+    refill(&mut arrays.a_row, pattern.nnz(), I::new(0));
+    refill(&mut arrays.a_slot, pattern.nnz(), I::new(0));
     for c in 0..n {
         for s in pattern.col_ptr[c] as usize..pattern.col_ptr[c + 1] as usize {
             let (i, j) = (inverse[pattern.row_idx[s] as usize], inverse[c]);
             let col = i.max(j) as usize;
             let at = next[col] as usize;
-            a_row[at] = I::new(i.min(j) as usize);
-            a_slot[at] = I::new(s);
+            arrays.a_row[at] = I::new(i.min(j) as usize);
+            arrays.a_slot[at] = I::new(s);
             next[col] += 1;
         }
     }
-    (a_ptr, a_row, a_slot)
 }
 
-/// Column pointers of $L$ and the empty rows: `(l_ptr, row_empty)`, with `n + 1` pointers
-/// (the prefix sum of each column's count of row-pattern entries) and, per row, whether its
-/// pattern is empty.
-fn column_counts<I: Index>(a_ptr: &[u32], a_row: &[I], parent: &[u32]) -> (Vec<u32>, Vec<bool>) {
+/// Column pointers of $L$ and the empty rows: `l_ptr` gets $n + 1$ pointers (the prefix sum
+/// of each column's count of row-pattern entries) and `row_empty`, per row, whether its
+/// pattern is empty; `mark` is scratch.
+fn column_counts<I: Index>(
+    a_ptr: &[u32],
+    a_row: &[I],
+    parent: &[u32],
+    l_ptr: &mut Vec<u32>,
+    row_empty: &mut Vec<bool>,
+    mark: &mut Vec<u32>,
+) {
     let n = parent.len();
-    let mut l_ptr = vec![0u32; n + 1];
-    let mut row_empty = vec![true; n];
-    let mut mark = vec![NONE; n];
+    refill(l_ptr, n + 1, 0);
+    refill(row_empty, n, true);
+    refill(mark, n, NONE);
     for (k, empty) in row_empty.iter_mut().enumerate() {
-        row_walk(k, a_ptr, a_row, parent, &mut mark, |j| {
+        row_walk(k, a_ptr, a_row, parent, mark, |j| {
             l_ptr[j + 1] += 1;
             *empty = false;
         });
     }
-    prefix_sum(&mut l_ptr);
-    (l_ptr, row_empty)
+    prefix_sum(l_ptr);
 }
 
-/// Row indices of $L$, ascending within each column: row $k$ is appended to every column of
-/// its pattern, rows in increasing order.
-fn column_rows<I: Index>(a_ptr: &[u32], a_row: &[I], parent: &[u32], l_ptr: &[u32]) -> Vec<I> {
+/// Row indices of $L$ into `l_row`, ascending within each column: row $k$ is appended to
+/// every column of its pattern, rows in increasing order; `fill` and `mark` are scratch.
+fn column_rows<I: Index>(
+    a_ptr: &[u32],
+    a_row: &[I],
+    parent: &[u32],
+    l_ptr: &[u32],
+    l_row: &mut Vec<I>,
+    fill: &mut Vec<u32>,
+    mark: &mut Vec<u32>,
+) {
     let n = parent.len();
-    let mut fill = l_ptr[..n].to_vec();
-    let mut l_row = vec![I::new(0); l_ptr[n] as usize];
-    let mut mark = vec![NONE; n];
+    fill.clear();
+    fill.extend_from_slice(&l_ptr[..n]);
+    refill(l_row, l_ptr[n] as usize, I::new(0));
+    refill(mark, n, NONE);
     for k in 0..n {
-        row_walk(k, a_ptr, a_row, parent, &mut mark, |j| {
+        row_walk(k, a_ptr, a_row, parent, mark, |j| {
             l_row[fill[j] as usize] = I::new(k);
             fill[j] += 1;
         });
     }
-    l_row
 }
 
 /// Calls `visit` on every column $j < k$ of row $k$ of $L$: the elimination-tree paths from
@@ -431,11 +585,17 @@ fn prefix_sum(ptr: &mut [u32]) {
     }
 }
 
-/// Elimination tree of a symmetric matrix from its upper columns (Liu, with path
-/// compression through `ancestor`).
-fn elimination_tree<I: Index>(n: usize, a_ptr: &[u32], a_row: &[I]) -> Vec<u32> {
-    let mut parent = vec![NONE; n];
-    let mut ancestor = vec![NONE; n];
+/// Elimination tree of a symmetric matrix from its upper columns into `parent` (Liu, with
+/// path compression through `ancestor`, scratch).
+fn elimination_tree<I: Index>(
+    n: usize,
+    a_ptr: &[u32],
+    a_row: &[I],
+    parent: &mut Vec<u32>,
+    ancestor: &mut Vec<u32>,
+) {
+    refill(parent, n, NONE);
+    refill(ancestor, n, NONE);
     for k in 0..n {
         for &i in &a_row[a_ptr[k] as usize..a_ptr[k + 1] as usize] {
             let mut r = i.get();
@@ -450,5 +610,4 @@ fn elimination_tree<I: Index>(n: usize, a_ptr: &[u32], a_row: &[I]) -> Vec<u32> 
             }
         }
     }
-    parent
 }

@@ -99,11 +99,11 @@ pub struct SheetSettings<T: Real> {
     /// step 4).
     pub max_propagations: u32,
     /// Vertices the sheet makes room for at setup beyond its mesh's (tears and finger pads
-    /// add vertices): in the mesh, the model, the cone layer and the tearing step, so that a
-    /// frame that tears without changing the topology (a sliding tip, a refused split)
-    /// allocates nothing while the mesh stays within them. A frame that splits still
-    /// allocates in the solver's new symbolic analysis. In [0, 1 048 576]. Default 256 (a
-    /// tear adds at most three per propagation).
+    /// add vertices): in the mesh, the model, the cone layer, the tearing step and the
+    /// solver ([`folio_solvers::step::Solver::reserve`]), so that a frame that tears
+    /// allocates nothing while the mesh stays within them, including a split, whose new
+    /// topology the solver analyses again in its reserved buffers. In [0, 1 048 576].
+    /// Default 256 (a tear adds at most three per propagation).
     pub reserved_vertices: usize,
     /// The effects.
     pub effects: SheetEffects,

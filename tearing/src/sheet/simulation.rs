@@ -150,7 +150,8 @@ impl<T: Real> TearingSheet<T> {
 
     /// Makes room at setup for [`SheetSettings::reserved_vertices`] more vertices than the
     /// mesh has, in every buffer a frame refills: the mesh's, the model's, the cone layer's,
-    /// the tearing step's, the loads' and the state's (a tear adds at most two triangles per vertex).
+    /// the tearing step's, the loads', the state's and the solver's ([`Solver::reserve`];
+    /// a tear adds at most two triangles per vertex).
     fn make_room(&mut self) {
         let extra = self.settings.reserved_vertices;
         let vertices = self.mesh.vertex_count() + extra;
@@ -163,6 +164,11 @@ impl<T: Real> TearingSheet<T> {
         self.state.x.room_for(vertices);
         self.state.v.room_for(vertices);
         self.propagations.room_for(PROPAGATION_ROOM.max(extra));
+        // The solver sizes its room from an analysis of the model as it is (one the solver
+        // refuses is reported by the next step, as a failed step).
+        if self.solver.analyse(&self.model).is_ok() {
+            self.solver.reserve(vertices);
+        }
     }
 
     /// The settings.
