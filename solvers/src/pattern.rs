@@ -180,6 +180,7 @@ impl KktPattern {
     ) -> Result<Self, SolverError> {
         let mut pattern = Self::default();
         pattern.rebuild(model, with_constraint_hessian, &mut Vec::new())?;
+        pattern.shrink_to_fit();
         Ok(pattern)
     }
 
@@ -202,6 +203,7 @@ impl KktPattern {
         }
         self.dof_of.clear();
         self.coordinate_of.clear();
+        self.dof_of.reserve_exact(3 * node_count);
         for c in 0..3 * node_count {
             if model.is_fixed(c / 3, c % 3) {
                 self.dof_of.push(NONE);
@@ -254,6 +256,21 @@ impl KktPattern {
         self.jacobian_slots.reserve(jacobian_len);
         self.fill_slots();
         Ok(keys)
+    }
+
+    /// Frees the room of the arrays beyond their lengths (a pattern built once).
+    pub fn shrink_to_fit(&mut self) {
+        for v in [
+            &mut self.dof_of,
+            &mut self.coordinate_of,
+            &mut self.col_ptr,
+            &mut self.row_idx,
+            &mut self.local_dofs,
+            &mut self.hessian_slots,
+            &mut self.jacobian_slots,
+        ] {
+            v.shrink_to_fit();
+        }
     }
 
     /// Room for a pattern `scale` times this one's size (every array in proportion).
@@ -460,6 +477,7 @@ fn compress(
     }
     refill(col_ptr, order + 1, 0);
     row_idx.clear();
+    row_idx.reserve_exact(entries.len());
     for &key in entries.iter() {
         col_ptr[(key >> 32) as usize + 1] += 1;
         row_idx.push(key as u32);

@@ -98,6 +98,8 @@ struct Workspace<T: Real> {
     entries: Vec<u64>,
     /// How many keys the last rebuild held before they merged (0 before the first).
     keys: usize,
+    /// [`Solver::reserve`] made room: keep the analysis's scratch between analyses.
+    kept: bool,
 }
 
 impl<T: Real> Workspace<T> {
@@ -135,6 +137,7 @@ impl<T: Real> Workspace<T> {
             released: Vec::new(),
             entries: Vec::new(),
             keys: 0,
+            kept: false,
         };
         work.size_vectors(nodes, projects);
         work
@@ -156,6 +159,11 @@ impl<T: Real> Workspace<T> {
             .kkt
             .pattern
             .rebuild(model, s.constraint_hessian, &mut self.entries)?;
+        if !self.kept {
+            // Not reserved: keep no scratch, as a first analysis does.
+            self.entries = Vec::new();
+            self.kkt.pattern.shrink_to_fit();
+        }
         if self.equilibrate != s.equilibrate {
             self.kkt.set_equilibration(s.equilibrate);
         }
@@ -197,6 +205,7 @@ impl<T: Real> Workspace<T> {
     /// Room for a topology `scale` times this one's size (module docs of
     /// [`Solver::reserve`]).
     fn reserve_scaled(&mut self, scale: f64) {
+        self.kept = true;
         let k = &self.kkt;
         let (n, nnz, nnz_l) = (k.pattern.order(), k.pattern.nnz(), k.symbolic().nnz_l());
         let grown = |len: usize| scaled(len, scale);
@@ -338,11 +347,13 @@ impl<T: Real> Solver<T> {
         match &mut work {
             Some(w) => w.reanalyse(model, s, projects)?,
             None => {
-                let (mut pattern, mut entries) = (KktPattern::default(), Vec::new());
-                let keys = pattern.rebuild(model, s.constraint_hessian, &mut entries)?;
+                // A first analysis keeps no scratch (a heap peak matters on a
+                // microcontroller): [`Solver::reserve`] makes room for the next ones.
+                let mut pattern = KktPattern::default();
+                let keys = pattern.rebuild(model, s.constraint_hessian, &mut Vec::new())?;
+                pattern.shrink_to_fit();
                 let (version, nodes) = (model.topology_version(), model.node_count());
                 let mut w = Workspace::new(pattern, s, version, nodes, projects);
-                w.entries = entries;
                 w.keys = keys;
                 work = Some(w);
             }

@@ -58,9 +58,13 @@ pub struct Symbolic {
 }
 
 /// The working memory of an analysis: the order's, the inverse permutation, and the
-/// per-column marks and counters of the tree and column walks.
+/// per-column marks and counters of the tree and column walks. It is kept between analyses
+/// only once [`Symbolic::reserve`] made room (an analysis that will run again); otherwise
+/// each analysis frees it.
 #[derive(Debug, Default)]
 struct AnalysisScratch {
+    /// [`Symbolic::reserve`] was called: keep the scratch.
+    kept: bool,
     order: OrderScratch,
     inverse: Vec<u32>,
     next: Vec<u32>,
@@ -111,7 +115,15 @@ impl Symbolic {
     pub fn reanalyse(&mut self, pattern: &KktPattern, ordering: Ordering) {
         let mut perm = core::mem::take(&mut self.perm);
         permutation_into(pattern, ordering, &mut perm, &mut self.scratch.order);
+        if !self.scratch.kept {
+            // Not reserved: free the order's stack before the next arrays are made, as a
+            // one-off analysis does (a heap peak matters on a microcontroller).
+            self.scratch.order = OrderScratch::default();
+        }
         self.of_permutation_into(pattern, perm);
+        if !self.scratch.kept {
+            self.scratch = AnalysisScratch::default();
+        }
     }
 
     /// Room for an analysis of order `n` with `nnz` stored entries and `nnz_l` entries in
@@ -128,6 +140,7 @@ impl Symbolic {
         self.signs.room_for(n);
         self.structural_zero.room_for(n);
         let s = &mut self.scratch;
+        s.kept = true;
         s.order.reserve(n, nnz);
         for v in [&mut s.inverse, &mut s.next, &mut s.mark, &mut s.ancestor] {
             v.room_for(n + 1);
