@@ -31,6 +31,31 @@
 //! $S^+ = \sum_k \max(\sigma_k, 0)\thinspace v_k v_k^T$ and so is positive semi-definite, and equal to
 //! the exact Hessian whenever $S \succeq 0$.
 //!
+//! Tension field (wrinkling). Paper a tenth of a millimetre thick buckles under a
+//! compressive stress orders of magnitude below its tensile stiffness, into wrinkles far
+//! finer than a sheet's triangles. [`MembraneLaw::TensionField`] replaces $W$ by its
+//! relaxation (Pipkin 1986, "The relaxed energy density for isotropic elastic membranes",
+//! *IMA J. Appl. Math.* 36; Steigmann 1990, *Proc. R. Soc. Lond. A* 429): with the principal
+//! Green strains $e_1 \ge e_2$ of $E$, $E n = e_1 n$, and $Y = 4\mu(\mu+\lambda)/(2\mu+\lambda)$,
+//! $\nu = \lambda/(2\mu+\lambda)$ recovered from the Lamé parameters,
+//! $$W = \begin{cases}
+//!   \mu\lVert E\rVert_F^2 + \tfrac{\lambda}{2}(\operatorname{tr}E)^2 & \text{taut: } e_2 \ge -\nu e_1,\ e_1 > 0\\
+//!   \tfrac{Y}{2} e_1^2,\quad S = Y e_1\thinspace n n^T & \text{wrinkled: } e_2 < -\nu e_1,\ e_1 > 0\\
+//!   0,\quad S = 0 & \text{slack: } e_1 \le 0.
+//! \end{cases}$$
+//! The wrinkled state is the taut energy minimised over the lateral strain (a uniaxial
+//! tension $Y e_1$ along $n$): $W$ and $S$ are continuous across the three states, and $S$
+//! is never compressive. In the wrinkled state, with $N = n n^T$, $m \perp n$ and
+//! $M = n m^T + m n^T$ (so $\delta e_1 = N : \delta E$ and
+//! $\delta n = \frac{M : \delta E}{2(e_1 - e_2)}\thinspace m$),
+//! $$\delta S = Y (N : \delta E)\thinspace N + \frac{Y e_1}{2(e_1 - e_2)} (M : \delta E)\thinspace M,$$
+//! two rank-one terms $\alpha (A : \delta E) A$. Since $A : \delta E = \sum_{jk} A_{jk}\thinspace
+//! f_j \cdot \delta f_k$, each adds $\alpha\thinspace g_j g_k^T$ to $C_{jk}$, with
+//! $g_k = \sum_j A_{jk} f_j$. There $e_1 - e_2 > (1+\nu) e_1 > 0$, so nothing divides by
+//! zero, and $N = (E - e_2 I)/(e_1 - e_2)$ needs no eigenvector. Both coefficients and $S$
+//! are non-negative: the tension-field Hessian is positive semi-definite in every state.
+//! $W$ is $C^1$, not $C^2$: the Hessian jumps where the state changes.
+//!
 //! Units: pattern coordinates and positions in page units, $Y$ in force per length,
 //! $V$ in force·length, gradients in force, Hessians in force per length.
 //!
@@ -49,7 +74,19 @@ use crate::math;
 use crate::real::{Mat3Ops, Real, Vec3Ops};
 use crate::term::{Blocks, NodeVecs, Potential, zero_blocks};
 
-/// Saint Venant–Kirchhoff stretching energy of one sheet triangle (module docs).
+/// How the membrane answers compression (module docs).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum MembraneLaw {
+    /// Saint Venant–Kirchhoff: compression is resisted like tension.
+    #[default]
+    StVenantKirchhoff,
+    /// The relaxed (tension-field) energy: a compressed direction wrinkles and carries no
+    /// stress; an element compressed every way is slack.
+    TensionField,
+}
+
+/// Saint Venant–Kirchhoff stretching energy of one sheet triangle, or its tension-field
+/// relaxation (module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Membrane<T> {
     /// $B = D_m^{-1}$, row-major (`dm_inv[row][col]`), per page unit.
@@ -60,6 +97,39 @@ pub struct Membrane<T> {
     pub mu: T,
     /// $\lambda = Y\nu/(1-\nu^2)$, force per length.
     pub lambda: T,
+    /// Whether compression is resisted ([`MembraneLaw::StVenantKirchhoff`], what
+    /// [`Membrane::new`] makes) or wrinkles ([`MembraneLaw::TensionField`]).
+    pub law: MembraneLaw,
+}
+
+/// The state of a tension-field element (module docs), with what its tangent needs.
+#[derive(Clone, Copy, Debug)]
+enum Regime<T> {
+    /// Both principal stresses non-negative: the Saint Venant–Kirchhoff response.
+    Taut,
+    /// One direction wrinkles: $S = Y e_1 N$, tangent $Y\thinspace N\otimes N + \beta\thinspace M \otimes M$.
+    Wrinkled {
+        /// $N = n n^T$.
+        n: Sym2<T>,
+        /// $M = n m^T + m n^T$.
+        m: Sym2<T>,
+        /// $Y$.
+        stiffness: T,
+        /// $\beta = Y e_1 / (2(e_1 - e_2))$.
+        shear: T,
+    },
+    /// Compressed every way: no stress, no stiffness.
+    Slack,
+}
+
+/// Strain, stress, energy density and state of one evaluation.
+#[derive(Clone, Copy, Debug)]
+struct Response<T> {
+    /// Second Piola–Kirchhoff stress $S$ (force per length).
+    stress: Sym2<T>,
+    /// $W$, energy per pattern area.
+    density: T,
+    regime: Regime<T>,
 }
 
 /// A symmetric $2\times 2$ matrix `[m00, m01, m11]`.
@@ -150,7 +220,14 @@ impl<T: Real> Membrane<T> {
             rest_area: area2 * T::HALF,
             mu: y / (T::TWO * (T::ONE + nu)),
             lambda: y * nu / ((T::ONE - nu) * (T::ONE + nu)),
+            law: MembraneLaw::StVenantKirchhoff,
         })
+    }
+
+    /// The same triangle under `law`.
+    #[must_use]
+    pub fn with_law(self, law: MembraneLaw) -> Self {
+        Self { law, ..self }
     }
 
     /// The two columns $(f_0, f_1)$ of the deformation gradient
@@ -171,31 +248,112 @@ impl<T: Real> Membrane<T> {
         [[-(m[0][0] + m[1][0]), -(m[0][1] + m[1][1])], m[0], m[1]]
     }
 
-    /// Green strain $E$ and second Piola–Kirchhoff stress $S$ of the columns `f`.
+    /// Stress, energy density and state of the columns `f` under [`Membrane::law`]
+    /// (module docs).
     #[inline]
-    fn strain_stress(&self, f: (T::Vec3, T::Vec3)) -> (Sym2<T>, Sym2<T>) {
+    fn response(&self, f: (T::Vec3, T::Vec3)) -> Response<T> {
         let e = [
             (f.0.dot(f.0) - T::ONE) * T::HALF,
             f.0.dot(f.1) * T::HALF,
             (f.1.dot(f.1) - T::ONE) * T::HALF,
         ];
-        let lt = self.lambda * (e[0] + e[2]);
-        let two_mu = T::TWO * self.mu;
-        (e, [two_mu * e[0] + lt, two_mu * e[1], two_mu * e[2] + lt])
+        let (mu, lambda) = (self.mu, self.lambda);
+        let tr = e[0] + e[2];
+        let taut = Response {
+            stress: [
+                T::TWO * mu * e[0] + lambda * tr,
+                T::TWO * mu * e[1],
+                T::TWO * mu * e[2] + lambda * tr,
+            ],
+            density: mu * (e[0] * e[0] + T::TWO * e[1] * e[1] + e[2] * e[2])
+                + T::HALF * lambda * tr * tr,
+            regime: Regime::Taut,
+        };
+        if self.law == MembraneLaw::StVenantKirchhoff {
+            return taut;
+        }
+        let half_diff = (e[0] - e[2]) * T::HALF;
+        let radius = math::sqrt(half_diff * half_diff + e[1] * e[1]);
+        let (hi, lo) = (tr * T::HALF + radius, tr * T::HALF - radius);
+        if hi <= T::ZERO {
+            return Response {
+                stress: [T::ZERO; 3],
+                density: T::ZERO,
+                regime: Regime::Slack,
+            };
+        }
+        let axial = T::TWO * mu + lambda;
+        // Taut when the lower principal stress (2 mu + lambda) e2 + lambda e1 is not negative.
+        // (NaN strain falls through to the wrinkled branch and gives NaN.)
+        if axial * lo + lambda * hi >= T::ZERO {
+            return taut;
+        }
+        // Wrinkled, so radius >= (1 + nu) e1 / 2 > 0. With D = (E - mean I) / radius =
+        // [d0, d1; d1, -d0]: N = (E - e2 I) / (e1 - e2) = (I + D) / 2, M = [-d1, d0; d0, d1].
+        let (d0, d1) = (half_diff / radius, e[1] / radius);
+        let n = [
+            (T::ONE + d0) * T::HALF,
+            d1 * T::HALF,
+            (T::ONE - d0) * T::HALF,
+        ];
+        let stiffness = T::TWO * T::TWO * mu * (mu + lambda) / axial;
+        let tension = stiffness * hi;
+        Response {
+            stress: [tension * n[0], tension * n[1], tension * n[2]],
+            density: T::HALF * tension * hi,
+            regime: Regime::Wrinkled {
+                n,
+                m: [-d1, d0, d1],
+                stiffness,
+                // Y e1 / (2 (e1 - e2)), e1 - e2 = 2 radius.
+                shear: tension / (T::TWO * T::TWO * radius),
+            },
+        }
     }
 
-    /// The Hessian with the geometric stiffness built from the stress `s` (exact: $S$;
-    /// projected: $S^+$).
-    fn hessian_with(&self, f: (T::Vec3, T::Vec3), s: Sym2<T>) -> Blocks<T, 3> {
+    /// The blocks $C_{jk} = \partial p_j / \partial f_k$ of the response `r`, with the
+    /// geometric stiffness built from `s` (exact: $S$; projected: $S^+$): `[C00, C01, C11]`.
+    fn tangent(&self, f: (T::Vec3, T::Vec3), r: &Response<T>, s: Sym2<T>) -> [T::Mat3; 3] {
         let (f0, f1) = f;
         let id = T::Mat3::IDENTITY;
-        let (mu, lambda) = (self.mu, self.lambda);
-        let f00 = T::Mat3::outer(f0, f0);
-        let f11 = T::Mat3::outer(f1, f1);
-        let ff = (f00 + f11) * mu;
-        let c00 = id * s[0] + f00 * (mu + lambda) + ff;
-        let c11 = id * s[2] + f11 * (mu + lambda) + ff;
-        let c01 = id * s[1] + T::Mat3::outer(f1, f0) * mu + T::Mat3::outer(f0, f1) * lambda;
+        let geometric = [id * s[0], id * s[1], id * s[2]];
+        match r.regime {
+            Regime::Taut => {
+                let (mu, lambda) = (self.mu, self.lambda);
+                let f00 = T::Mat3::outer(f0, f0);
+                let f11 = T::Mat3::outer(f1, f1);
+                let ff = (f00 + f11) * mu;
+                [
+                    geometric[0] + f00 * (mu + lambda) + ff,
+                    geometric[1] + T::Mat3::outer(f1, f0) * mu + T::Mat3::outer(f0, f1) * lambda,
+                    geometric[2] + f11 * (mu + lambda) + ff,
+                ]
+            }
+            Regime::Wrinkled {
+                n,
+                m,
+                stiffness,
+                shear,
+            } => {
+                let mut c = geometric;
+                for (a, alpha) in [(n, stiffness), (m, shear)] {
+                    // g_k = sum_j A_jk f_j adds alpha g_j g_k^T to C_jk.
+                    let g0 = f0 * a[0] + f1 * a[1];
+                    let g1 = f0 * a[1] + f1 * a[2];
+                    c[0] += T::Mat3::outer(g0, g0) * alpha;
+                    c[1] += T::Mat3::outer(g0, g1) * alpha;
+                    c[2] += T::Mat3::outer(g1, g1) * alpha;
+                }
+                c
+            }
+            Regime::Slack => [T::Mat3::ZERO; 3],
+        }
+    }
+
+    /// The Hessian of the response `r` with the geometric stiffness built from the stress
+    /// `s` (exact: $S$; projected: $S^+$).
+    fn hessian_with(&self, f: (T::Vec3, T::Vec3), r: &Response<T>, s: Sym2<T>) -> Blocks<T, 3> {
+        let [c00, c01, c11] = self.tangent(f, r, s);
         let c10 = c01.transposed();
         let w = self.node_weights();
         let a0 = self.rest_area;
@@ -224,17 +382,24 @@ impl<T: Real> Membrane<T> {
     #[must_use]
     pub fn hessian_projected(&self, x: &NodeVecs<T, 3>) -> Blocks<T, 3> {
         let f = self.deformation_gradient(x);
-        let (_, s) = self.strain_stress(f);
-        self.hessian_with(f, positive_part(s))
+        let r = self.response(f);
+        self.hessian_with(f, &r, positive_part(r.stress))
     }
 }
 
 impl<T: Real> Membrane<T> {
+    /// The second Piola–Kirchhoff stress $S$ at `x` under [`Membrane::law`], as
+    /// $[S_{uu}, S_{uv}, S_{vv}]$ in the pattern (force per length; module docs).
+    #[must_use]
+    pub fn stress(&self, x: &NodeVecs<T, 3>) -> [T; 3] {
+        self.response(self.deformation_gradient(x)).stress
+    }
+
     /// The Eshelby energy-momentum tensor of the triangle in the pattern,
     /// $$\Sigma = W I - F^T P = W I - C S,\qquad C = F^T F,$$
     /// with $W = V / A_0$ the energy per pattern area and $P = F S$ the first
-    /// Piola–Kirchhoff stress (force per length); symmetric, since the St Venant–Kirchhoff
-    /// $S$ is a polynomial in $C$ and so commutes with it. Returned as $[\Sigma_{uu},
+    /// Piola–Kirchhoff stress (force per length); symmetric, since $S$ shares $C$'s eigenvectors
+    /// under either law (a polynomial in $C$, or $Y e_1 n n^T$) and so commutes with it. Returned as $[\Sigma_{uu},
     /// \Sigma_{uv}, \Sigma_{vv}]$.
     ///
     /// It is the stress of the pattern itself (Eshelby 1951; Gurtin, *Configurational
@@ -247,10 +412,11 @@ impl<T: Real> Membrane<T> {
     #[must_use]
     pub fn eshelby(&self, x: &NodeVecs<T, 3>) -> [T; 3] {
         let f = self.deformation_gradient(x);
-        let (e, s) = self.strain_stress(f);
-        let tr = e[0] + e[2];
-        let norm_sq = e[0] * e[0] + T::TWO * e[1] * e[1] + e[2] * e[2];
-        let w = self.mu * norm_sq + T::HALF * self.lambda * tr * tr;
+        let Response {
+            stress: s,
+            density: w,
+            ..
+        } = self.response(f);
         let c = [f.0.dot(f.0), f.0.dot(f.1), f.1.dot(f.1)];
         [
             w - (c[0] * s[0] + c[1] * s[1]),
@@ -262,15 +428,12 @@ impl<T: Real> Membrane<T> {
 
 impl<T: Real> Potential<T, 3> for Membrane<T> {
     fn value(&self, x: &NodeVecs<T, 3>) -> T {
-        let (e, _) = self.strain_stress(self.deformation_gradient(x));
-        let tr = e[0] + e[2];
-        let norm_sq = e[0] * e[0] + T::TWO * e[1] * e[1] + e[2] * e[2];
-        self.rest_area * (self.mu * norm_sq + T::HALF * self.lambda * tr * tr)
+        self.rest_area * self.response(self.deformation_gradient(x)).density
     }
 
     fn gradient(&self, x: &NodeVecs<T, 3>) -> NodeVecs<T, 3> {
         let f = self.deformation_gradient(x);
-        let (_, s) = self.strain_stress(f);
+        let s = self.response(f).stress;
         let a0 = self.rest_area;
         let p0 = (f.0 * s[0] + f.1 * s[1]) * a0;
         let p1 = (f.0 * s[1] + f.1 * s[2]) * a0;
@@ -282,7 +445,7 @@ impl<T: Real> Potential<T, 3> for Membrane<T> {
 
     fn hessian(&self, x: &NodeVecs<T, 3>) -> Blocks<T, 3> {
         let f = self.deformation_gradient(x);
-        let (_, s) = self.strain_stress(f);
-        self.hessian_with(f, s)
+        let r = self.response(f);
+        self.hessian_with(f, &r, r.stress)
     }
 }

@@ -258,9 +258,9 @@ impl KktPattern {
         Ok(keys)
     }
 
-    /// Frees the room of the arrays beyond their lengths (a pattern built once).
-    pub fn shrink_to_fit(&mut self) {
-        for v in [
+    /// Every array of the pattern, for what is done to all of them alike.
+    fn arrays_mut(&mut self) -> [&mut Vec<u32>; 7] {
+        [
             &mut self.dof_of,
             &mut self.coordinate_of,
             &mut self.col_ptr,
@@ -268,22 +268,19 @@ impl KktPattern {
             &mut self.local_dofs,
             &mut self.hessian_slots,
             &mut self.jacobian_slots,
-        ] {
+        ]
+    }
+
+    /// Frees the room of the arrays beyond their lengths (a pattern built once).
+    pub fn shrink_to_fit(&mut self) {
+        for v in self.arrays_mut() {
             v.shrink_to_fit();
         }
     }
 
     /// Room for a pattern `scale` times this one's size (every array in proportion).
     pub fn reserve_scaled(&mut self, scale: f64) {
-        for v in [
-            &mut self.dof_of,
-            &mut self.coordinate_of,
-            &mut self.col_ptr,
-            &mut self.row_idx,
-            &mut self.local_dofs,
-            &mut self.hessian_slots,
-            &mut self.jacobian_slots,
-        ] {
+        for v in self.arrays_mut() {
             v.room_for(scaled(v.len(), scale));
         }
     }

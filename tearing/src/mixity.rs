@@ -150,7 +150,6 @@ pub fn mode_mixity<T: Real>(
 ) -> Option<f64> {
     let (y, nu) = (loads.stretch_modulus, loads.poisson);
     let mu = y / (2.0 * (1.0 + nu));
-    let lambda = y * nu / (1.0 - nu * nu);
     let kappa = (3.0 - nu) / (1.0 + nu);
     let weight = |i: u32| q.get(i as usize).copied().unwrap_or(0.0);
     let corners = |tri: &[u32; 3]| {
@@ -172,7 +171,7 @@ pub fn mode_mixity<T: Real>(
     let r = rotation::<T>(mean)?;
     let mut integral = [0.0; 2];
     for (k, tri) in mesh.triangles().iter().enumerate() {
-        let Some(f) = loads.deformations.get(k) else {
+        let (Some(f), Some(s)) = (loads.deformations.get(k), loads.stresses.get(k)) else {
             continue;
         };
         let pts = corners(tri);
@@ -180,21 +179,13 @@ pub fn mode_mixity<T: Real>(
         if g == [0.0; 2] {
             continue;
         }
-        // The actual field: u_{i,j} = (R^T F - I)_{ij}, S from the Green strain.
+        // The actual field: u_{i,j} = (R^T F - I)_{ij} and the membrane's S.
         let h = [
             [r[0].dot(f[0]).to_f64() - 1.0, r[0].dot(f[1]).to_f64()],
             [r[1].dot(f[0]).to_f64(), r[1].dot(f[1]).to_f64() - 1.0],
         ];
-        let e = [
-            0.5 * (f[0].dot(f[0]).to_f64() - 1.0),
-            0.5 * f[0].dot(f[1]).to_f64(),
-            0.5 * (f[1].dot(f[1]).to_f64() - 1.0),
-        ];
-        let tr = e[0] + e[2];
-        let s = [
-            [2.0 * mu * e[0] + lambda * tr, 2.0 * mu * e[1]],
-            [2.0 * mu * e[1], 2.0 * mu * e[2] + lambda * tr],
-        ];
+        let s = s.map(|v| v.to_f64());
+        let s = [[s[0], s[1]], [s[1], s[2]]];
         let (s, h) = (to_local(s, d), to_local(h, d));
         let g = [g[0] * d[0] + g[1] * d[1], -g[0] * d[1] + g[1] * d[0]];
         let c = [

@@ -86,6 +86,10 @@ pub struct TriangleLoads<'a, T: Real> {
     /// Triangle `k`'s deformation gradient, its columns $F e_u$, $F e_v$
     /// ([`folio_kernels::membrane::Membrane::deformation_gradient`]).
     pub deformations: &'a [[T::Vec3; 2]],
+    /// Triangle `k`'s second Piola–Kirchhoff stress $[S_{uu}, S_{uv}, S_{vv}]$ (force per
+    /// sheet unit; [`folio_kernels::membrane::Membrane::stress`], so under the membrane's
+    /// law).
+    pub stresses: &'a [[T; 3]],
     /// Per vertex, `true` where the motion is prescribed (a finger's pad): its net force
     /// is a reaction, not a load, and the disk leaves it out (empty: none).
     pub prescribed: &'a [bool],
@@ -105,6 +109,8 @@ pub struct LoadBuffers<T: Real> {
     pub eshelby: Vec<[T; 3]>,
     /// See [`TriangleLoads::deformations`].
     pub deformations: Vec<[T::Vec3; 2]>,
+    /// See [`TriangleLoads::stresses`].
+    pub stresses: Vec<[T; 3]>,
     /// See [`TriangleLoads::prescribed`].
     pub prescribed: Vec<bool>,
 }
@@ -115,6 +121,7 @@ impl<T: Real> LoadBuffers<T> {
         self.gradients.room_for(triangles);
         self.eshelby.room_for(triangles);
         self.deformations.room_for(triangles);
+        self.stresses.room_for(triangles);
         self.prescribed.room_for(vertices);
     }
 }
@@ -125,6 +132,7 @@ impl<T: Real> Default for LoadBuffers<T> {
             gradients: Vec::new(),
             eshelby: Vec::new(),
             deformations: Vec::new(),
+            stresses: Vec::new(),
             prescribed: Vec::new(),
         }
     }
@@ -139,6 +147,7 @@ impl<T: Real> LoadBuffers<T> {
             gradients: &self.gradients,
             eshelby: &self.eshelby,
             deformations: &self.deformations,
+            stresses: &self.stresses,
             prescribed: &self.prescribed,
             stretch_modulus,
             poisson,
@@ -302,6 +311,7 @@ mod tests {
                 gradients: &gradients,
                 eshelby: &sigma,
                 deformations: &deformations,
+                stresses: &[],
                 prescribed: &[],
                 stretch_modulus: y,
                 poisson: 0.0,

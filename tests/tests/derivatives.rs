@@ -12,7 +12,7 @@ use folio_kernels::gravity::Gravity;
 use folio_kernels::hinge::Hinge;
 use folio_kernels::iso2d::Iso2d;
 use folio_kernels::iso3d::Iso3d;
-use folio_kernels::membrane::Membrane;
+use folio_kernels::membrane::{Membrane, MembraneLaw};
 use folio_kernels::positional::Positional;
 use folio_kernels::spring::Spring;
 use folio_kernels::term::NodeVecs;
@@ -443,18 +443,92 @@ fn membrane_projected_hessian_is_psd_and_exact_under_tension() {
     assert!(tension > 10 && compression > 10 && indefinite_exact > 10);
 }
 
+/// The state of a tension-field triangle (0 taut, 1 wrinkled, 2 slack) and the energy the
+/// relaxed law gives it, both from the principal Green strains and the `y`, `nu` the
+/// membrane was made with (not from the kernel's Lamé parameters): wrinkled
+/// $A_0 Y e_1^2 / 2$, slack 0, taut `None` (the Saint Venant–Kirchhoff value).
+fn tension_field_state(
+    m: &Membrane<f64>,
+    x: &NodeVecs<f64, 3>,
+    y: f64,
+    nu: f64,
+) -> (usize, Option<f64>) {
+    let (f0, f1) = m.deformation_gradient(x);
+    let e = [
+        (f0.dot(f0) - 1.0) / 2.0,
+        f0.dot(f1) / 2.0,
+        (f1.dot(f1) - 1.0) / 2.0,
+    ];
+    let radius = (((e[0] - e[2]) / 2.0).powi(2) + e[1] * e[1]).sqrt();
+    let (e1, e2) = ((e[0] + e[2]) / 2.0 + radius, (e[0] + e[2]) / 2.0 - radius);
+    if e1 <= 0.0 {
+        (2, Some(0.0))
+    } else if e2 < -nu * e1 {
+        (1, Some(m.rest_area * y * e1 * e1 / 2.0))
+    } else {
+        (0, None)
+    }
+}
+
+/// A random tension-field membrane in a configuration stretched or compressed up to 40 %
+/// each way, with its `y` and `nu`.
+fn tension_field_case(r: &mut Rng) -> (Membrane<f64>, NodeVecs<f64, 3>, f64, f64) {
+    let u = pattern_triangle(r);
+    let (y, nu) = (r.uniform(0.5, 3.0), r.uniform(0.0, 0.49));
+    let m = Membrane::new(u, y, nu)
+        .unwrap()
+        .with_law(MembraneLaw::TensionField);
+    let noise = if r.uniform(0.0, 1.0) < 0.5 { 0.05 } else { 0.4 };
+    (m, deformed(r, &u, (0.6, 1.4), noise), y, nu)
+}
+
+/// The tension-field law against finite differences, in its three states (taut, wrinkled,
+/// slack), and its energy against the relaxed energy computed here from the principal
+/// strains; its Hessian is positive semi-definite everywhere.
+#[test]
+fn membrane_tension_field() {
+    let mut states = [0usize; 3];
+    let mut worst_energy: f64 = 0.0;
+    let mut worst_eigen: f64 = 0.0;
+    potentials("membrane (tension field)", 21, |r| {
+        let (m, x, y, nu) = tension_field_case(r);
+        let (state, relaxed) = tension_field_state(&m, &x, y, nu);
+        states[state] += 1;
+        let value = m.value(&x);
+        // Taut: the Saint Venant-Kirchhoff energy, checked on its own in `membrane`.
+        let reference =
+            relaxed.unwrap_or_else(|| m.with_law(MembraneLaw::StVenantKirchhoff).value(&x));
+        worst_energy = worst_energy.max((value - reference).abs() / reference.abs().max(1e-12));
+        let (emin, emax) = eigen_range(&m.hessian(&x));
+        worst_eigen = worst_eigen.min(emin / emax.max(1e-300));
+        (m, x)
+    });
+    println!(
+        "tension field: {} taut, {} wrinkled, {} slack; energy error {worst_energy:.2e}, \
+         lowest eigenvalue / highest {worst_eigen:.2e}",
+        states[0], states[1], states[2]
+    );
+    assert!(states.iter().all(|&n| n >= 10), "states {states:?}");
+    assert!(
+        worst_energy <= 1e-12,
+        "relaxed energy off by {worst_energy:e}"
+    );
+    assert!(worst_eigen >= -1e-12, "indefinite Hessian: {worst_eigen:e}");
+}
+
 /// The Eshelby tensor is the energy's derivative with respect to the pattern: moving a
 /// rest corner $u_i$ with the 3D positions held changes $V$ by $A_0 \Sigma \nabla N_i$
 /// (`Membrane::eshelby`), checked by central differences of the energy rebuilt on the
-/// moved pattern.
+/// moved pattern; under both laws.
 #[test]
 fn membrane_eshelby_is_the_pattern_derivative_of_the_energy() {
     let mut rng = Rng::new(19);
     let mut worst: f64 = 0.0;
-    for _ in 0..CONFIGS {
+    for case in 0..2 * CONFIGS {
+        let law = [MembraneLaw::StVenantKirchhoff, MembraneLaw::TensionField][case % 2];
         let u = pattern_triangle(&mut rng);
         let (y, nu) = (rng.uniform(0.5, 3.0), rng.uniform(0.0, 0.49));
-        let m = Membrane::new(u, y, nu).unwrap();
+        let m = Membrane::new(u, y, nu).unwrap().with_law(law);
         let x = deformed(&mut rng, &u, (0.7, 1.3), 0.2);
         let sigma = m.eshelby(&x);
         // grad N_i: the rows of dm_inv give grad N_1, grad N_2; grad N_0 = -(sum).
@@ -475,7 +549,7 @@ fn membrane_eshelby_is_the_pattern_derivative_of_the_energy() {
                 let energy = |d: f64| {
                     let mut v = u;
                     v[i][k] += d;
-                    Membrane::new(v, y, nu).unwrap().value(&x)
+                    Membrane::new(v, y, nu).unwrap().with_law(law).value(&x)
                 };
                 let fd = (energy(h) - energy(-h)) / (2.0 * h);
                 worst = worst.max((fd - analytic[k]).abs() / scale);

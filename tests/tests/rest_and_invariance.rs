@@ -9,7 +9,7 @@ use folio_kernels::glue::Glue;
 use folio_kernels::hinge::Hinge;
 use folio_kernels::iso2d::Iso2d;
 use folio_kernels::iso3d::Iso3d;
-use folio_kernels::membrane::Membrane;
+use folio_kernels::membrane::{Membrane, MembraneLaw};
 use folio_kernels::positional::Positional;
 use folio_kernels::spring::{Spring, SpringKind};
 use folio_kernels::term::{Blocks, NodeVecs};
@@ -439,6 +439,47 @@ fn membrane_uniaxial_plane_stress() {
             );
         }
     }
+}
+
+/// Wagner's tension field (Mansfield, *The Bending and Stretching of Plates*, 2nd ed. 1989,
+/// ch. 9): a membrane in simple shear $\gamma$ that cannot carry compression wrinkles at 45°
+/// and carries the shear as a uniaxial tension $Y\gamma/2$ along the other diagonal, so its
+/// shear stiffness is $Y/4$, not the elastic $\mu = Y/(2(1+\nu))$: the energy per area is
+/// $Y\gamma^2/8$. Checked at a small shear on random triangles in random frames.
+#[test]
+fn tension_field_membrane_shears_with_wagner_stiffness() {
+    let mut rng = Rng::new(58);
+    let gamma: f64 = 1e-4;
+    let mut worst: f64 = 0.0;
+    for _ in 0..200 {
+        let u = pattern_triangle(&mut rng);
+        let (y, nu) = (rng.uniform(0.5, 3.0), rng.uniform(0.0, 0.49));
+        let m = Membrane::new(u, y, nu)
+            .unwrap()
+            .with_law(MembraneLaw::TensionField);
+        // Simple shear along a random pattern direction d: p -> p + gamma (p . n) d.
+        let phi = rng.uniform(-3.2, 3.2);
+        let (d, n) = ([phi.cos(), phi.sin()], [-phi.sin(), phi.cos()]);
+        let sheared = u.map(|p| {
+            let s = gamma * (p[0] * n[0] + p[1] * n[1]);
+            DVec3::new(p[0] + s * d[0], p[1] + s * d[1], 0.0)
+        });
+        let x = rigid(&sheared, rng.rotation(), rng.vec(3.0));
+        let area = folio_tests::area2_and_longest(u).0 / 2.0;
+        let wagner = area * y * gamma * gamma / 8.0;
+        // The Green strain's principal values are +-gamma/2 + gamma^2/4: relative O(gamma).
+        worst = worst.max((m.value(&x) - wagner).abs() / wagner);
+        let elastic = Membrane::new(u, y, nu).unwrap().value(&x);
+        let ratio = m.value(&x) / elastic;
+        assert!(
+            (ratio - (1.0 + nu) / 2.0).abs() <= 1e-3,
+            "tension field / elastic shear energy {ratio} for nu {nu}"
+        );
+    }
+    println!(
+        "tension-field shear against Wagner's Y gamma^2 / 8: worst relative error {worst:.2e}"
+    );
+    assert!(worst <= 1e-3, "{worst}");
 }
 
 #[test]

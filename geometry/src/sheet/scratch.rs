@@ -68,10 +68,101 @@ impl<T: Real> Default for Scratch<T> {
     }
 }
 
+impl<T: Real> Scratch<T> {
+    /// The backup `slot`.
+    fn slot(&mut self, slot: Slot) -> &mut Backup<T> {
+        match slot {
+            Slot::Edit => &mut self.backup,
+            Slot::Checkpoint => &mut self.checkpoint,
+        }
+    }
+}
+
 impl<T: Real> Clone for Scratch<T> {
     /// Empty buffers (module docs): scratch carries no state from one call to the next.
     fn clone(&self) -> Self {
         Self::default()
+    }
+}
+
+/// The arrays a mesh and each of its backups hold, borrowed: what is done to all of them
+/// alike is written once.
+struct Arrays<'a, T: Real> {
+    pattern: &'a mut Vec<[T; 2]>,
+    positions: &'a mut Vec<T::Vec3>,
+    velocities: &'a mut Vec<T::Vec3>,
+    triangles: &'a mut Vec<[u32; 3]>,
+    twins: &'a mut Vec<u32>,
+    outgoing: &'a mut Vec<u32>,
+}
+
+/// The [`Arrays`] of a mesh or a backup, which name their arrays alike.
+macro_rules! arrays_of {
+    ($owner:expr) => {
+        Arrays {
+            pattern: &mut $owner.pattern,
+            positions: &mut $owner.positions,
+            velocities: &mut $owner.velocities,
+            triangles: &mut $owner.triangles,
+            twins: &mut $owner.twins,
+            outgoing: &mut $owner.outgoing,
+        }
+    };
+}
+
+impl<T: Real> Arrays<'_, T> {
+    /// Room for a mesh of `v` vertices and `t` triangles.
+    fn reserve(self, v: usize, t: usize) {
+        room(self.pattern, v);
+        room(self.positions, v);
+        room(self.velocities, v);
+        room(self.outgoing, v);
+        room(self.triangles, t);
+        room(self.twins, 3 * t);
+    }
+
+    /// Copies every array between the mesh's (`self`) and a backup's (`kept`), the `way`
+    /// given.
+    fn copy(self, kept: Arrays<'_, T>, way: Way) {
+        copy_between(self.pattern, kept.pattern, way);
+        copy_between(self.positions, kept.positions, way);
+        copy_between(self.velocities, kept.velocities, way);
+        copy_between(self.triangles, kept.triangles, way);
+        copy_between(self.twins, kept.twins, way);
+        copy_between(self.outgoing, kept.outgoing, way);
+    }
+}
+
+impl<T: Real> Backup<T> {
+    /// The backup's arrays.
+    fn arrays(&mut self) -> Arrays<'_, T> {
+        arrays_of!(self)
+    }
+}
+
+/// Which of the scratch's backups a copy uses.
+#[derive(Clone, Copy, Debug)]
+enum Slot {
+    /// The running edit's backup.
+    Edit,
+    /// The caller's checkpoint.
+    Checkpoint,
+}
+
+/// Which way a copy runs.
+#[derive(Clone, Copy, Debug)]
+enum Way {
+    /// From the mesh into the backup.
+    Save,
+    /// From the backup into the mesh.
+    Restore,
+}
+
+/// Copies one array between the mesh (`live`) and a backup (`kept`) the `way` given.
+fn copy_between<E: Copy>(live: &mut Vec<E>, kept: &mut Vec<E>, way: Way) {
+    match way {
+        Way::Save => copy_into(kept, live),
+        Way::Restore => copy_into(live, kept),
     }
 }
 
@@ -95,21 +186,10 @@ impl<T: Real> SheetMesh<T> {
     /// within this room allocate nothing.
     pub fn reserve(&mut self, vertices: usize, triangles: usize) {
         let (v, t) = (vertices, triangles);
-        room(&mut self.pattern, v);
-        room(&mut self.positions, v);
-        room(&mut self.velocities, v);
-        room(&mut self.outgoing, v);
-        room(&mut self.triangles, t);
-        room(&mut self.twins, 3 * t);
+        self.arrays().reserve(v, t);
         let s = &mut self.scratch;
-        for b in [&mut s.backup, &mut s.checkpoint] {
-            room(&mut b.pattern, v);
-            room(&mut b.positions, v);
-            room(&mut b.velocities, v);
-            room(&mut b.outgoing, v);
-            room(&mut b.triangles, t);
-            room(&mut b.twins, 3 * t);
-        }
+        s.backup.arrays().reserve(v, t);
+        s.checkpoint.arrays().reserve(v, t);
         room(&mut s.keys, 3 * t);
         room(&mut s.seen, v);
         room(&mut s.triangles, TRIANGLE_LIST_ROOM);
@@ -119,54 +199,46 @@ impl<T: Real> SheetMesh<T> {
     /// edits, where a later one may refuse after an earlier one took. Within the room made
     /// by [`SheetMesh::reserve`] it allocates nothing.
     pub fn checkpoint(&mut self) {
-        let mut b = core::mem::take(&mut self.scratch.checkpoint);
-        self.copy_to(&mut b);
-        self.scratch.checkpoint = b;
+        self.copy(Slot::Checkpoint, Way::Save);
     }
 
     /// Puts the sheet back as it was at the last [`SheetMesh::checkpoint`] (or as it was
     /// made, with no checkpoint taken: nothing is restored then).
     pub fn rollback(&mut self) {
-        let b = core::mem::take(&mut self.scratch.checkpoint);
-        if !b.pattern.is_empty() {
-            self.copy_from(&b);
+        if !self.scratch.checkpoint.pattern.is_empty() {
+            self.copy(Slot::Checkpoint, Way::Restore);
         }
-        self.scratch.checkpoint = b;
     }
 
     /// Copies the arrays into the edit backup.
     pub(crate) fn save(&mut self) {
-        let mut b = core::mem::take(&mut self.scratch.backup);
-        self.copy_to(&mut b);
-        self.scratch.backup = b;
+        self.copy(Slot::Edit, Way::Save);
     }
 
     /// Restores the arrays from the edit backup.
     pub(crate) fn restore(&mut self) {
-        let b = core::mem::take(&mut self.scratch.backup);
-        self.copy_from(&b);
-        self.scratch.backup = b;
+        self.copy(Slot::Edit, Way::Restore);
     }
 
-    fn copy_to(&self, b: &mut Backup<T>) {
-        b.topology_version = self.topology_version;
-        b.shape_version = self.shape_version;
-        copy_into(&mut b.pattern, &self.pattern);
-        copy_into(&mut b.positions, &self.positions);
-        copy_into(&mut b.velocities, &self.velocities);
-        copy_into(&mut b.triangles, &self.triangles);
-        copy_into(&mut b.twins, &self.twins);
-        copy_into(&mut b.outgoing, &self.outgoing);
+    /// Copies the arrays and versions between the mesh and the backup `slot`, the `way`
+    /// given.
+    fn copy(&mut self, slot: Slot, way: Way) {
+        // Taken out (an empty backup allocates nothing) so that the mesh can lend its arrays.
+        let mut b = core::mem::take(self.scratch.slot(slot));
+        match way {
+            Way::Save => {
+                (b.topology_version, b.shape_version) = (self.topology_version, self.shape_version)
+            }
+            Way::Restore => {
+                (self.topology_version, self.shape_version) = (b.topology_version, b.shape_version)
+            }
+        }
+        self.arrays().copy(b.arrays(), way);
+        *self.scratch.slot(slot) = b;
     }
 
-    fn copy_from(&mut self, b: &Backup<T>) {
-        self.topology_version = b.topology_version;
-        self.shape_version = b.shape_version;
-        copy_into(&mut self.pattern, &b.pattern);
-        copy_into(&mut self.positions, &b.positions);
-        copy_into(&mut self.velocities, &b.velocities);
-        copy_into(&mut self.triangles, &b.triangles);
-        copy_into(&mut self.twins, &b.twins);
-        copy_into(&mut self.outgoing, &b.outgoing);
+    /// The mesh's arrays.
+    fn arrays(&mut self) -> Arrays<'_, T> {
+        arrays_of!(self)
     }
 }

@@ -125,11 +125,13 @@ impl<T: Real> SheetModel<T> {
 
     /// What the tearing step reads of every triangle at positions `x`, into `buffers`
     /// (cleared first): the stretching gradient at its corners, its Eshelby tensor
-    /// ([`Membrane::eshelby`]) and its deformation gradient; and which vertices are held.
+    /// ([`Membrane::eshelby`]), its deformation gradient and its stress; and which vertices
+    /// are held.
     pub fn triangle_loads(&self, x: &[T::Vec3], buffers: &mut LoadBuffers<T>) {
         buffers.gradients.clear();
         buffers.eshelby.clear();
         buffers.deformations.clear();
+        buffers.stresses.clear();
         buffers.prescribed.clear();
         buffers.prescribed.extend_from_slice(&self.terms.held);
         for term in self.terms.membranes.terms() {
@@ -138,6 +140,7 @@ impl<T: Real> SheetModel<T> {
             buffers.eshelby.push(term.kernel.eshelby(&local));
             let (f0, f1) = term.kernel.deformation_gradient(&local);
             buffers.deformations.push([f0, f1]);
+            buffers.stresses.push(term.kernel.stress(&local));
         }
     }
 
@@ -203,7 +206,8 @@ impl<T: Real> Terms<T> {
         for (t, tri) in mesh.triangles().iter().enumerate() {
             let corners = tri.map(|i| p[i as usize]);
             let membrane = Membrane::new(corners, settings.stretch_modulus, settings.poisson)
-                .map_err(|_| TearingSheetError::Kernel { index: t })?;
+                .map_err(|_| TearingSheetError::Kernel { index: t })?
+                .with_law(settings.membrane_law());
             self.membranes.push(membrane, *tri);
             let share = mesh.pattern_area(t) * settings.density * third;
             for &i in tri {

@@ -9,6 +9,7 @@
 use crate::TearSettings;
 use folio_geometry::sheet::ConeSettings;
 use folio_kernels::Real;
+use folio_kernels::membrane::MembraneLaw;
 
 use super::error::TearingSheetError;
 
@@ -84,6 +85,14 @@ pub struct SheetSettings<T: Real> {
     pub bending: T,
     /// What the hinges count.
     pub hinge_bending: HingeBending,
+    /// Whether the membrane wrinkles under compression: the relaxed, tension-field energy
+    /// ([`MembraneLaw::TensionField`]), in which a compressed direction carries no stress
+    /// (paper buckles at a compressive stress far below its tensile stiffness, into wrinkles
+    /// finer than the mesh, and its bending decides their shape); `false` resists
+    /// compression like tension (Saint Venant–Kirchhoff). Experimental with tearing: the
+    /// tear estimators assume a linear-elastic field at the tip, and with wrinkling the tear
+    /// scenes branch or stall (`docs/scenes.md`).
+    pub wrinkling: bool,
     /// Mass per pattern area.
     pub density: T,
     /// Gravitational acceleration along −Y (sheet units / s²), when gravity is on.
@@ -129,6 +138,7 @@ impl<T: Real> Default for SheetSettings<T> {
             poisson: T::from_f64(0.3),
             bending: T::from_f64(1e-5),
             hinge_bending: HingeBending::Bergou,
+            wrinkling: false,
             density: T::from_f64(1e-8),
             gravity: T::from_f64(9.81),
             time_step: T::from_f64(1.0 / 60.0),
@@ -143,6 +153,16 @@ impl<T: Real> Default for SheetSettings<T> {
 }
 
 impl<T: Real> SheetSettings<T> {
+    /// The membrane's law: [`MembraneLaw::TensionField`] when [`SheetSettings::wrinkling`].
+    #[must_use]
+    pub fn membrane_law(&self) -> MembraneLaw {
+        if self.wrinkling {
+            MembraneLaw::TensionField
+        } else {
+            MembraneLaw::StVenantKirchhoff
+        }
+    }
+
     /// Checks every field.
     ///
     /// # Errors

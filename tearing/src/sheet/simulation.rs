@@ -231,7 +231,37 @@ impl<T: Real> TearingSheet<T> {
         if !(at[0].is_finite() && at[1].is_finite()) || self.mesh.locate(at).is_none() {
             return Err(TearingSheetError::FingerOffSheet);
         }
-        let mut mesh = self.mesh.clone();
+        // The finger's vertex is inserted in place; anything refused after it puts the mesh
+        // back (a checkpoint, not a clone: the clone would drop the mesh's reserved room).
+        self.mesh.checkpoint();
+        let placed = self.place_finger(at);
+        if placed.is_err() {
+            self.mesh.rollback();
+        }
+        let (vertex, pads, held) = placed?;
+        self.topology_seen = self.mesh.topology_version();
+        self.held = held;
+        self.pads = pads;
+        self.centres.push(vertex);
+        self.sync_state();
+        self.make_room();
+        let finger = self.fingers.len();
+        self.fingers.push(Finger {
+            vertex,
+            target: self.mesh.positions()[vertex as usize],
+        });
+        Ok(finger)
+    }
+
+    /// [`TearingSheet::grab`]'s edit: the vertex at `at` (inserted or snapped to) in
+    /// `self.mesh`, the pads with the new finger's, the held vertices, and the model rebuilt
+    /// for them. On error the model is unchanged; the mesh may hold the new vertex.
+    #[allow(clippy::type_complexity)]
+    fn place_finger(
+        &mut self,
+        at: [T; 2],
+    ) -> Result<(u32, Vec<PadVertex<T>>, Vec<u32>), TearingSheetError> {
+        let mesh = &mut self.mesh;
         let vertex = mesh
             .insert_at(at, T::from_f64(self.settings.tearing.snap))
             .map_err(|_| TearingSheetError::FingerOffSheet)?;
@@ -246,7 +276,7 @@ impl<T: Real> TearingSheet<T> {
             finger,
             offset: T::Vec3::ZERO,
         });
-        for i in pad_vertices(&mesh, vertex, self.settings.finger_radius) {
+        for i in pad_vertices(mesh, vertex, self.settings.finger_radius) {
             if i != vertex && !self.held.contains(&i) {
                 pads.push(PadVertex {
                     vertex: i,
@@ -256,19 +286,8 @@ impl<T: Real> TearingSheet<T> {
             }
         }
         let held: Vec<u32> = pads.iter().map(|h| h.vertex).collect();
-        self.model.rebuild(&mesh, &held, &self.settings)?;
-        self.topology_seen = mesh.topology_version();
-        self.mesh = mesh;
-        self.held = held;
-        self.pads = pads;
-        self.centres.push(vertex);
-        self.sync_state();
-        self.make_room();
-        self.fingers.push(Finger {
-            vertex,
-            target: centre,
-        });
-        Ok(finger)
+        self.model.rebuild(&self.mesh, &held, &self.settings)?;
+        Ok((vertex, pads, held))
     }
 
     /// Moves finger `index` to `target` (3D); the sheet follows at the next frame.

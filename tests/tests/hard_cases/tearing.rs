@@ -3,7 +3,7 @@
 
 use folio_kernels::Potential;
 use folio_kernels::error::KernelError;
-use folio_kernels::membrane::Membrane;
+use folio_kernels::membrane::{Membrane, MembraneLaw};
 use folio_kernels::{Mat3Ops, Real};
 use folio_tearing::sheet::{SheetEffects, SheetSettings, TearingSheet};
 use glam::DVec3;
@@ -109,6 +109,66 @@ fn tear_a_sheet_of_a_few_triangles() {
         15,
     );
     assert!(left >= 1);
+}
+
+/// A wrinkling sheet (the tension-field membrane, `SheetSettings::wrinkling`) crushed in the
+/// plane by its four corners to a third of its size and pulled back out: most triangles are
+/// slack, with no stress and no stiffness, and the Newton matrix keeps only the mass and
+/// the hinges. Asserts finite positions and a valid manifold on every frame, and that
+/// every step advanced.
+#[test]
+fn crush_a_wrinkling_sheet() {
+    let mut s = TearingSheet::new(SheetSettings {
+        wrinkling: true,
+        ..SheetSettings::default()
+    })
+    .unwrap();
+    let corners = [[0.0, 0.0], [12.0, 0.0], [12.0, 9.0], [0.0, 9.0]];
+    let inward = |c: [f64; 2]| DVec3::new(6.0 - c[0], 4.5 - c[1], 0.0) * (2.0 / 3.0);
+    let crush: Vec<_> = corners.iter().map(|&c| (c, inward(c))).collect();
+    pull(&mut s, &crush, 30);
+    let crushed = s.propagations().len();
+    let mesh = s.mesh();
+    let slack = mesh
+        .triangles()
+        .iter()
+        .filter(|tri| {
+            let m = Membrane::new(tri.map(|i| mesh.pattern()[i as usize]), 3e-3, 0.3)
+                .unwrap()
+                .with_law(MembraneLaw::TensionField);
+            m.stress(&tri.map(|i| mesh.positions()[i as usize])) == [0.0; 3]
+        })
+        .count();
+    let triangles = mesh.triangle_count();
+    for (i, &corner) in corners.iter().enumerate() {
+        let target = s.fingers()[i].target;
+        s.move_finger(i, target - inward(corner) * 1.2).unwrap();
+    }
+    let mut refused = 0;
+    for frame in 0..30 {
+        let report = s.step();
+        refused += usize::from(!report.status.advanced());
+        assert!(
+            s.mesh().positions().iter().all(|p| p.is_finite()),
+            "frame {frame} of the pull: not finite"
+        );
+        let mut mesh = s.mesh().clone();
+        assert_eq!(
+            mesh.check(),
+            Ok(()),
+            "frame {frame} of the pull: invalid sheet"
+        );
+    }
+    println!(
+        "crushed wrinkling sheet: {slack} of {triangles} triangles slack, {crushed} propagations while \
+         crushed, {refused} steps refused while pulled out, {} propagations in all",
+        s.propagations().len()
+    );
+    assert!(
+        2 * slack > triangles,
+        "{slack} of {triangles} triangles slack"
+    );
+    assert_eq!(refused, 0);
 }
 
 /// `Membrane::new` with rest edges of 1e-15 in f32: accepted before, with an infinite energy
