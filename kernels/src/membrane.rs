@@ -109,6 +109,8 @@ enum Regime<T> {
     Taut,
     /// One direction wrinkles: $S = Y e_1 N$, tangent $Y\thinspace N\otimes N + \beta\thinspace M \otimes M$.
     Wrinkled {
+        /// $e_1$, the larger principal strain.
+        stretch: T,
         /// $N = n n^T$.
         n: Sym2<T>,
         /// $M = n m^T + m n^T$.
@@ -122,13 +124,13 @@ enum Regime<T> {
     Slack,
 }
 
-/// Strain, stress, energy density and state of one evaluation.
+/// Strain, stress and state of one evaluation.
 #[derive(Clone, Copy, Debug)]
 struct Response<T> {
+    /// Green strain $E$.
+    strain: Sym2<T>,
     /// Second Piola–Kirchhoff stress $S$ (force per length).
     stress: Sym2<T>,
-    /// $W$, energy per pattern area.
-    density: T,
     regime: Regime<T>,
 }
 
@@ -248,8 +250,7 @@ impl<T: Real> Membrane<T> {
         [[-(m[0][0] + m[1][0]), -(m[0][1] + m[1][1])], m[0], m[1]]
     }
 
-    /// Stress, energy density and state of the columns `f` under [`Membrane::law`]
-    /// (module docs).
+    /// Strain, stress and state of the columns `f` under [`Membrane::law`] (module docs).
     #[inline]
     fn response(&self, f: (T::Vec3, T::Vec3)) -> Response<T> {
         let e = [
@@ -260,13 +261,12 @@ impl<T: Real> Membrane<T> {
         let (mu, lambda) = (self.mu, self.lambda);
         let tr = e[0] + e[2];
         let taut = Response {
+            strain: e,
             stress: [
                 T::TWO * mu * e[0] + lambda * tr,
                 T::TWO * mu * e[1],
                 T::TWO * mu * e[2] + lambda * tr,
             ],
-            density: mu * (e[0] * e[0] + T::TWO * e[1] * e[1] + e[2] * e[2])
-                + T::HALF * lambda * tr * tr,
             regime: Regime::Taut,
         };
         if self.law == MembraneLaw::StVenantKirchhoff {
@@ -277,8 +277,8 @@ impl<T: Real> Membrane<T> {
         let (hi, lo) = (tr * T::HALF + radius, tr * T::HALF - radius);
         if hi <= T::ZERO {
             return Response {
+                strain: e,
                 stress: [T::ZERO; 3],
-                density: T::ZERO,
                 regime: Regime::Slack,
             };
         }
@@ -299,9 +299,10 @@ impl<T: Real> Membrane<T> {
         let stiffness = T::TWO * T::TWO * mu * (mu + lambda) / axial;
         let tension = stiffness * hi;
         Response {
+            strain: e,
             stress: [tension * n[0], tension * n[1], tension * n[2]],
-            density: T::HALF * tension * hi,
             regime: Regime::Wrinkled {
+                stretch: hi,
                 n,
                 m: [-d1, d0, d1],
                 stiffness,
@@ -311,8 +312,26 @@ impl<T: Real> Membrane<T> {
         }
     }
 
+    /// $W$ of the response `r`, energy per pattern area (module docs).
+    #[inline]
+    fn density(&self, r: &Response<T>) -> T {
+        match r.regime {
+            Regime::Taut => {
+                let e = r.strain;
+                let tr = e[0] + e[2];
+                self.mu * (e[0] * e[0] + T::TWO * e[1] * e[1] + e[2] * e[2])
+                    + T::HALF * self.lambda * tr * tr
+            }
+            Regime::Wrinkled {
+                stretch, stiffness, ..
+            } => T::HALF * stiffness * stretch * stretch,
+            Regime::Slack => T::ZERO,
+        }
+    }
+
     /// The blocks $C_{jk} = \partial p_j / \partial f_k$ of the response `r`, with the
     /// geometric stiffness built from `s` (exact: $S$; projected: $S^+$): `[C00, C01, C11]`.
+    #[inline]
     fn tangent(&self, f: (T::Vec3, T::Vec3), r: &Response<T>, s: Sym2<T>) -> [T::Mat3; 3] {
         let (f0, f1) = f;
         let id = T::Mat3::IDENTITY;
@@ -334,6 +353,7 @@ impl<T: Real> Membrane<T> {
                 m,
                 stiffness,
                 shear,
+                ..
             } => {
                 let mut c = geometric;
                 for (a, alpha) in [(n, stiffness), (m, shear)] {
@@ -352,6 +372,7 @@ impl<T: Real> Membrane<T> {
 
     /// The Hessian of the response `r` with the geometric stiffness built from the stress
     /// `s` (exact: $S$; projected: $S^+$).
+    #[inline]
     fn hessian_with(&self, f: (T::Vec3, T::Vec3), r: &Response<T>, s: Sym2<T>) -> Blocks<T, 3> {
         let [c00, c01, c11] = self.tangent(f, r, s);
         let c10 = c01.transposed();
@@ -412,11 +433,8 @@ impl<T: Real> Membrane<T> {
     #[must_use]
     pub fn eshelby(&self, x: &NodeVecs<T, 3>) -> [T; 3] {
         let f = self.deformation_gradient(x);
-        let Response {
-            stress: s,
-            density: w,
-            ..
-        } = self.response(f);
+        let r = self.response(f);
+        let (s, w) = (r.stress, self.density(&r));
         let c = [f.0.dot(f.0), f.0.dot(f.1), f.1.dot(f.1)];
         [
             w - (c[0] * s[0] + c[1] * s[1]),
@@ -428,7 +446,8 @@ impl<T: Real> Membrane<T> {
 
 impl<T: Real> Potential<T, 3> for Membrane<T> {
     fn value(&self, x: &NodeVecs<T, 3>) -> T {
-        self.rest_area * self.response(self.deformation_gradient(x)).density
+        let r = self.response(self.deformation_gradient(x));
+        self.rest_area * self.density(&r)
     }
 
     fn gradient(&self, x: &NodeVecs<T, 3>) -> NodeVecs<T, 3> {
