@@ -8,6 +8,10 @@
 //! DOG book's settings must meet, shared with the C API ([`limits`]), a scene name's rules
 //! ([`name`]) and short numbers in messages ([`number`]).
 //!
+//! Features (both default): `sheet` (the tearing sheet's scenes, [`sheet`] and [`hands`])
+//! and `fixture-reach` (the check that a book fixture's first grab reaches the book,
+//! [`reach`]); the browser build (`folio-web`) leaves both out, for size.
+//!
 //! Layers: the models (`folio-book`, `folio-pages`, `folio-tearing`) below; the `folio`
 //! command and the C API (`folio-capi`) above, both reading scenes through this crate.
 
@@ -18,11 +22,15 @@ pub mod builtin;
 pub mod clock;
 pub mod events;
 pub mod fixtures;
+#[cfg(feature = "sheet")]
 pub mod hands;
 pub mod keys;
 pub mod limits;
 pub mod name;
 pub mod number;
+#[cfg(feature = "fixture-reach")]
+pub mod reach;
 pub mod scene;
 pub mod settings;
+#[cfg(feature = "sheet")]
 pub mod sheet;

@@ -488,8 +488,14 @@ impl Scene {
         self.check_effects(text, model)?;
         self.check_settings(text, model)?;
         if model == ModelKind::Sheet {
+            #[cfg(feature = "sheet")]
             crate::sheet::check(self)
                 .map_err(|(span, message)| SceneError::at(text, Some(span), message))?;
+            #[cfg(not(feature = "sheet"))]
+            return bad(
+                self.model.span(),
+                "the sheet model is not in this build (folio-scene without its `sheet` feature)",
+            );
         } else {
             self.check_not_sheet(text)?;
         }
@@ -530,9 +536,12 @@ impl Scene {
             |(span, message): (Range<usize>, String)| SceneError::at(text, Some(span), message);
         match model {
             // The book as `folio run` and the C API build it, then its first grab.
-            ModelKind::Dog => crate::book::check(self)
-                .and_then(|()| crate::book::check_reach(self))
-                .map_err(at),
+            ModelKind::Dog => {
+                let checked = crate::book::check(self);
+                #[cfg(feature = "fixture-reach")]
+                let checked = checked.and_then(|()| crate::reach::check_reach(self));
+                checked.map_err(at)
+            }
             ModelKind::MassSpring => self.check_spring().map_err(at),
             ModelKind::Xpbd => self.check_xpbd().map_err(at),
             _ => Ok(()),

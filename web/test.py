@@ -1,0 +1,229 @@
+#!/usr/bin/python3
+"""Folio in a real browser (issue 23): serves web/dist/ on the loopback, loads the page in
+headless Chromium (Debian's chromium and chromium-driver, driven by Selenium), grabs the
+right page near its outer edge with a pointer, drags it across the spine, holds until the
+page has followed, lets go, and checks that the page merged into the left block (50/50 ->
+51/49), that no frame or step went bad, and that the page covers a sensible share of a
+screenshot. With --bench it also times the default scene's recorded page turn in the
+browser and natively (cargo run --release -p folio-web --example native_steps) in the same
+run and prints the ratio (a figure, not an assertion: timings do not belong in tests).
+
+Usage: /usr/bin/python3 web/test.py [--dist web/dist] [--screenshot PATH] [--bench]
+Exit status 0 when every check passes, 1 otherwise.
+"""
+
+import argparse
+import functools
+import http.server
+import io
+import json
+import subprocess
+import sys
+import threading
+import time
+
+from PIL import Image
+from selenium import webdriver
+from selenium.webdriver.chrome.service import Service
+from selenium.webdriver.common.actions import interaction
+from selenium.webdriver.common.actions.action_builder import ActionBuilder
+from selenium.webdriver.common.actions.pointer_input import PointerInput
+
+WINDOW = (1200, 800)
+# A page pixel: light and neutral, as the paper's shading gives it (the warm table, the red
+# cover and the dark background are not).
+PAPER_MIN, PAPER_SPREAD = 150, 12
+# The share of a screenshot the book's pages should cover at the default view.
+SHARE = (0.10, 0.85)
+
+
+class Quiet(http.server.SimpleHTTPRequestHandler):
+    def log_message(self, *args):
+        pass
+
+
+def serve(directory):
+    handler = functools.partial(Quiet, directory=directory)
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    return server
+
+
+def browser():
+    options = webdriver.ChromeOptions()
+    options.binary_location = "/usr/bin/chromium"
+    for flag in [
+        "--headless=new",
+        "--no-sandbox",
+        "--disable-dev-shm-usage",
+        f"--window-size={WINDOW[0]},{WINDOW[1]}",
+        # No GPU here: WebGL2 through SwiftShader, Chromium's software renderer.
+        "--use-angle=swiftshader",
+        "--enable-unsafe-swiftshader",
+        "--ignore-gpu-blocklist",
+    ]:
+        options.add_argument(flag)
+    return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
+
+
+def wait(driver, script, what, timeout, errors_fail=True):
+    """Polls `script` until it returns something truthy; fails with `what` after `timeout`,
+    or at once when the page shows an error (unless `errors_fail` is false)."""
+    end = time.time() + timeout
+    while time.time() < end:
+        value = driver.execute_script(script)
+        if value:
+            return value
+        error = driver.execute_script("return window.folio && window.folio.error")
+        if error and errors_fail:
+            raise AssertionError(f"the page shows an error: {error}")
+        time.sleep(0.1)
+    raise AssertionError(f"timed out after {timeout} s waiting for {what}")
+
+
+def status(driver):
+    return driver.execute_script("return window.folio.status")
+
+
+def pointer(driver):
+    return ActionBuilder(driver, mouse=PointerInput(interaction.POINTER_MOUSE, "mouse"))
+
+
+def drag(actions, start, end, steps=20):
+    """Queues a pointer move from `start` to `end` in `steps` moves 40 ms apart."""
+    for k in range(1, steps + 1):
+        x = start[0] + (end[0] - start[0]) * k / steps
+        y = start[1] + (end[1] - start[1]) * k / steps
+        actions.pointer_action.move_to_location(int(x), int(y))
+        actions.pointer_action.pause(0.04)
+
+
+def turn_a_page(driver, base, screenshot):
+    driver.get(base + "/index.html")
+    wait(driver, "return window.folio && window.folio.ready", "the page to start", 60)
+    s = status(driver)
+    assert (s["left"], s["right"], s["active"]) == (50, 50, 0), f"start: {s}"
+    width, height = s["page"]
+    top = driver.execute_script("return window.folio.top()")
+    start = driver.execute_script(
+        "return window.folio.project(arguments[0], arguments[1], arguments[2])",
+        0.9 * width, top, 0.5 * height)
+    end = driver.execute_script(
+        "return window.folio.project(arguments[0], arguments[1], arguments[2])",
+        -0.9 * width, top, 0.5 * height)
+    print(f"grab at {start[0]:.0f}, {start[1]:.0f} px; drag to {end[0]:.0f}, {end[1]:.0f} px")
+    # Up over the spine, where the page stands, then down onto the left block.
+    over = driver.execute_script(
+        "return window.folio.project(arguments[0], arguments[1], arguments[2])",
+        0.0, top + 0.6 * width, 0.5 * height)
+    actions = pointer(driver)
+    actions.pointer_action.move_to_location(int(start[0]), int(start[1]))
+    actions.pointer_action.pointer_down()
+    drag(actions, start, over)
+    actions.perform()
+    s = status(driver)
+    assert s["phase"] == "held", f"the pointer did not grab the page: {s}"
+    # The picture: the page standing over the spine, its back's print showing through.
+    wait(driver, f"const s = window.folio.status; return s.held && s.held[0] < {0.2 * width};",
+         "the held page to stand over the spine", 120)
+    check_screenshot(driver, screenshot)
+    actions = pointer(driver)
+    drag(actions, over, end)
+    actions.perform()
+    # Hold until the page has followed the pointer over the left block, as a hand would.
+    wait(driver,
+         f"const s = window.folio.status; return s.held && s.held[0] < {-0.5 * width};",
+         "the held page to cross the spine", 120)
+    release = pointer(driver)
+    release.pointer_action.pointer_up()
+    release.perform()
+    s = wait(driver,
+             "const s = window.folio.status; return s.active === 0 && s.phase === 'at-rest' && s;",
+             "the page to settle and merge", 180)
+    frames = driver.execute_script("return window.folio.frames")
+    print(f"after {frames} frames: {s['left']} | {s['right']}, {s['steps']} steps, "
+          f"max stretch {100 * s['maxStretch']:.1f} %, {s['failedSteps']} failed steps, "
+          f"{s['badFrames']} bad frames, {s['refusedInputs']} refused inputs")
+    assert (s["left"], s["right"]) == (51, 49), f"the page did not merge left: {s}"
+    assert s["failedSteps"] == 0 and s["badFrames"] == 0, f"bad frames: {s}"
+    assert driver.execute_script("return window.folio.badFrames") == 0
+    assert s["refusedInputs"] == 0, f"refused pointer input: {s}"
+    assert 0 < s["maxStretch"] < 0.2, f"stretch: {s}"
+
+
+def check_screenshot(driver, path):
+    png = driver.get_screenshot_as_png()
+    image = Image.open(io.BytesIO(png)).convert("RGB")
+    pixels = list(image.getdata())
+    paper = sum(1 for p in pixels if min(p) >= PAPER_MIN and max(p) - min(p) <= PAPER_SPREAD)
+    share = paper / len(pixels)
+    print(f"screenshot {image.size[0]} x {image.size[1]}: pages cover {100 * share:.1f} % "
+          f"(expected {100 * SHARE[0]:.0f}-{100 * SHARE[1]:.0f} %)")
+    if path:
+        with open(path, "wb") as f:
+            f.write(png)
+        print(f"wrote {path}")
+    assert SHARE[0] <= share <= SHARE[1], f"page pixels {share:.3f}"
+
+
+def errors_are_shown(driver, base):
+    driver.get(base + "/index.html?scene=missing.toml")
+    message = wait(driver, "return window.folio && window.folio.error", "an error message", 60,
+                   errors_fail=False)
+    shown = driver.execute_script("return !document.getElementById('error').hidden")
+    print(f"a missing scene shows: {message}")
+    assert shown and "missing.toml" in message
+
+
+def bench(driver, base, runs):
+    native = subprocess.run(
+        ["cargo", "run", "-q", "--release", "-p", "folio-web", "--example", "native_steps",
+         "--", "--runs", str(runs)],
+        check=True, capture_output=True, text=True).stdout
+    native_ms = float(native.strip().splitlines()[-1].split("=")[1])
+    driver.get(base + f"/index.html?bench={runs}")
+    result = wait(driver, "return window.folio && window.folio.bench", "the bench", 600)
+    assert result["failed"] == 0 and result["counts"] == [51, 49, 0], f"bench: {result}"
+    web_ms = result["median"]
+    print(f"step, default page turn ({result['steps']} steps, median of {runs} runs): "
+          f"browser {web_ms:.4f} ms, native {native_ms:.4f} ms, ratio {web_ms / native_ms:.2f}")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--dist", default="web/dist")
+    parser.add_argument("--screenshot", help="write the screenshot here")
+    parser.add_argument("--bench", action="store_true", help="time a step against native")
+    parser.add_argument("--runs", type=int, default=5)
+    args = parser.parse_args()
+    server = serve(args.dist)
+    base = f"http://127.0.0.1:{server.server_address[1]}"
+    driver = browser()
+    try:
+        version = driver.capabilities.get("browserVersion")
+        print(f"Chromium {version}, headless, {WINDOW[0]} x {WINDOW[1]}")
+        checks = [
+            ("a dragged page merges into the left block, the book covering the screenshot",
+             lambda: turn_a_page(driver, base, args.screenshot)),
+            ("a bad scene shows a message", lambda: errors_are_shown(driver, base)),
+        ]
+        if args.bench:
+            checks.append(("a step in the browser against native",
+                           lambda: bench(driver, base, args.runs)))
+        failed = 0
+        for name, check in checks:
+            try:
+                check()
+                print(f"ok: {name}")
+            except AssertionError as e:
+                failed += 1
+                print(f"FAILED: {name}: {e}")
+        print(f"{len(checks) - failed} passed, {failed} failed")
+        return 1 if failed else 0
+    finally:
+        driver.quit()
+        server.shutdown()
+
+
+if __name__ == "__main__":
+    sys.exit(main())
