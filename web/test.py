@@ -25,6 +25,7 @@ import time
 from PIL import Image
 from selenium import webdriver
 from selenium.webdriver.chrome.service import Service
+from selenium.webdriver.common.action_chains import ActionChains
 from selenium.webdriver.common.actions import interaction
 from selenium.webdriver.common.actions.action_builder import ActionBuilder
 from selenium.webdriver.common.actions.pointer_input import PointerInput
@@ -49,7 +50,7 @@ def serve(directory):
     return server
 
 
-def browser():
+def browser(*extra):
     options = webdriver.ChromeOptions()
     options.binary_location = "/usr/bin/chromium"
     for flag in [
@@ -61,6 +62,7 @@ def browser():
         "--use-angle=swiftshader",
         "--enable-unsafe-swiftshader",
         "--ignore-gpu-blocklist",
+        *extra,
     ]:
         options.add_argument(flag)
     return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
@@ -166,6 +168,77 @@ def check_screenshot(driver, path):
     assert SHARE[0] <= share <= SHARE[1], f"page pixels {share:.3f}"
 
 
+def the_panel_switches_models(driver, base):
+    """Each model of the panel runs (its frames advance, none bad), and unticking an effect
+    rebuilds the book without it."""
+    driver.get(base + "/index.html")
+    wait(driver, "return window.folio && window.folio.ready", "the page to start", 60)
+    for model in ["cone", "mass-spring", "dog"]:
+        driver.execute_script(
+            "const m = document.getElementById('model'); m.value = arguments[0];"
+            "m.dispatchEvent(new Event('change'));", model)
+        wait(driver, f"const s = window.folio.status; return s.model === '{model}' && "
+                     "s.frames >= 30 && s;", f"the {model} model to run 30 frames", 60)
+        s = status(driver)
+        assert s["badFrames"] == 0 and s["failedSteps"] == 0, f"{model}: {s}"
+        print(f"{model}: {s['frames']} frames, effects {s['effects']}")
+    driver.execute_script(
+        "const box = document.querySelector('#effects input[data-name=gravity]');"
+        "box.checked = false; box.dispatchEvent(new Event('change'));")
+    s = wait(driver, "const s = window.folio.status; return !s.effects.includes('gravity') && s;",
+             "the book without gravity", 60)
+    assert s["model"] == "dog" and "collisions" in s["effects"], f"effects: {s}"
+
+
+def a_finger_bookmarks(driver, base):
+    """While a page is held, B puts a finger in the book (one more page flips into the
+    grip: two held) and N takes it back out (one held)."""
+    driver.get(base + "/index.html")
+    wait(driver, "return window.folio && window.folio.ready", "the page to start", 60)
+    s = status(driver)
+    width, height = s["page"]
+    top = driver.execute_script("return window.folio.top()")
+    start = driver.execute_script(
+        "return window.folio.project(arguments[0], arguments[1], arguments[2])",
+        0.9 * width, top, 0.5 * height)
+    lifted = driver.execute_script(
+        "return window.folio.project(arguments[0], arguments[1], arguments[2])",
+        0.5 * width, top + 0.4 * width, 0.5 * height)
+    actions = pointer(driver)
+    actions.pointer_action.move_to_location(int(start[0]), int(start[1]))
+    actions.pointer_action.pointer_down()
+    drag(actions, start, lifted, steps=10)
+    actions.perform()
+    wait(driver, "return window.folio.status.frames > 60", "the page to lift", 60)
+    ActionChains(driver).send_keys("b").perform()
+    s = wait(driver, "const s = window.folio.status; return s.active === 2 && s;",
+             "a second page in the grip", 60)
+    print(f"B: {s['left']} | {s['right']}, {s['active']} held")
+    ActionChains(driver).send_keys("n").perform()
+    s = wait(driver, "const s = window.folio.status; return s.active === 1 && s;",
+             "one page back out", 60)
+    print(f"N: {s['left']} | {s['right']}, {s['active']} held")
+    release = pointer(driver)
+    release.pointer_action.pointer_up()
+    release.perform()
+    s = wait(driver, "const s = window.folio.status; return s.active === 0 && s;",
+             "the page to settle", 180)
+    assert s["left"] + s["right"] == 100 and s["badFrames"] == 0 and s["failedSteps"] == 0, s
+
+
+def no_webgl2_is_said(base):
+    """A browser without WebGL2 gets a message, not a blank canvas."""
+    driver = browser("--disable-webgl2")
+    try:
+        driver.get(base + "/index.html")
+        message = wait(driver, "return window.folio && window.folio.error", "an error message",
+                       60, errors_fail=False)
+        print(f"without WebGL2: {message}")
+        assert "WebGL2" in message, message
+    finally:
+        driver.quit()
+
+
 def errors_are_shown(driver, base):
     driver.get(base + "/index.html?scene=missing.toml")
     message = wait(driver, "return window.folio && window.folio.error", "an error message", 60,
@@ -173,6 +246,11 @@ def errors_are_shown(driver, base):
     shown = driver.execute_script("return !document.getElementById('error').hidden")
     print(f"a missing scene shows: {message}")
     assert shown and "missing.toml" in message
+    driver.get(base + "/index.html?scene=data:,name%20%3D%20%22x%22%0Amodel%20%3D%203")
+    message = wait(driver, "return window.folio && window.folio.error", "an error message", 60,
+                   errors_fail=False)
+    print(f"a scene that does not parse shows: {message}")
+    assert "line 2" in message, message
 
 
 def bench(driver, base, runs):
@@ -205,7 +283,11 @@ def main():
         checks = [
             ("a dragged page merges into the left block, the book covering the screenshot",
              lambda: turn_a_page(driver, base, args.screenshot)),
+            ("a finger bookmarks while a page is held", lambda: a_finger_bookmarks(driver, base)),
+            ("the panel switches models and effects",
+             lambda: the_panel_switches_models(driver, base)),
             ("a bad scene shows a message", lambda: errors_are_shown(driver, base)),
+            ("without WebGL2 the page says so", lambda: no_webgl2_is_said(base)),
         ]
         if args.bench:
             checks.append(("a step in the browser against native",
