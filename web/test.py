@@ -100,24 +100,31 @@ def drag(actions, start, end, steps=20):
         actions.pointer_action.pause(0.04)
 
 
-def turn_a_page(driver, base, screenshot):
+def open_book(driver, base):
+    """Loads the page; its status and a function giving the pixel where the point at
+    fractions (x, lift) of the page width across and above the book's top, half-way along
+    the spine, is seen."""
     driver.get(base + "/index.html")
     wait(driver, "return window.folio && window.folio.ready", "the page to start", 60)
     s = status(driver)
-    assert (s["left"], s["right"], s["active"]) == (50, 50, 0), f"start: {s}"
     width, height = s["page"]
     top = driver.execute_script("return window.folio.top()")
-    start = driver.execute_script(
-        "return window.folio.project(arguments[0], arguments[1], arguments[2])",
-        0.9 * width, top, 0.5 * height)
-    end = driver.execute_script(
-        "return window.folio.project(arguments[0], arguments[1], arguments[2])",
-        -0.9 * width, top, 0.5 * height)
+
+    def seen(x, lift=0.0):
+        return driver.execute_script(
+            "return window.folio.project(arguments[0], arguments[1], arguments[2])",
+            x * width, top + lift * width, 0.5 * height)
+    return s, seen
+
+
+def turn_a_page(driver, base, screenshot):
+    s, seen = open_book(driver, base)
+    assert (s["left"], s["right"], s["active"]) == (50, 50, 0), f"start: {s}"
+    width = s["page"][0]
+    start, end = seen(0.9), seen(-0.9)
     print(f"grab at {start[0]:.0f}, {start[1]:.0f} px; drag to {end[0]:.0f}, {end[1]:.0f} px")
     # Up over the spine, where the page stands, then down onto the left block.
-    over = driver.execute_script(
-        "return window.folio.project(arguments[0], arguments[1], arguments[2])",
-        0.0, top + 0.6 * width, 0.5 * height)
+    over = seen(0.0, 0.6)
     actions = pointer(driver)
     actions.pointer_action.move_to_location(int(start[0]), int(start[1]))
     actions.pointer_action.pointer_down()
@@ -193,17 +200,8 @@ def the_panel_switches_models(driver, base):
 def a_finger_bookmarks(driver, base):
     """While a page is held, B puts a finger in the book (one more page flips into the
     grip: two held) and N takes it back out (one held)."""
-    driver.get(base + "/index.html")
-    wait(driver, "return window.folio && window.folio.ready", "the page to start", 60)
-    s = status(driver)
-    width, height = s["page"]
-    top = driver.execute_script("return window.folio.top()")
-    start = driver.execute_script(
-        "return window.folio.project(arguments[0], arguments[1], arguments[2])",
-        0.9 * width, top, 0.5 * height)
-    lifted = driver.execute_script(
-        "return window.folio.project(arguments[0], arguments[1], arguments[2])",
-        0.5 * width, top + 0.4 * width, 0.5 * height)
+    _, seen = open_book(driver, base)
+    start, lifted = seen(0.9), seen(0.5, 0.4)
     actions = pointer(driver)
     actions.pointer_action.move_to_location(int(start[0]), int(start[1]))
     actions.pointer_action.pointer_down()
