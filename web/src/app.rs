@@ -57,6 +57,7 @@ pub struct App {
     table: f32,
     reach: f32,
     effects: Vec<String>,
+    kind: ModelKind,
 }
 
 impl App {
@@ -97,6 +98,7 @@ impl App {
             table,
             reach,
             effects: scene.effect_names(),
+            kind: *scene.model.get_ref(),
         })
     }
 
@@ -127,6 +129,12 @@ impl App {
     #[must_use]
     pub fn tally(&self) -> &Tally {
         &self.tally
+    }
+
+    /// The effects the model can simulate (every name the panel may offer).
+    #[must_use]
+    pub fn available_effects(&self) -> &'static [&'static str] {
+        self.kind.effects()
     }
 
     /// The effects simulated.

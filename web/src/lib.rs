@@ -69,15 +69,10 @@ impl Folio {
         folio_scene::builtin::scene(name).map(String::from)
     }
 
-    /// The effects the model of a built-in scene can simulate, comma-separated.
+    /// The effects this scene's model can simulate, comma-separated.
     #[must_use]
     pub fn model_effects(&self) -> String {
-        let kind = match self.app.model().name() {
-            "cone" => folio_scene::scene::ModelKind::Cone,
-            "mass-spring" => folio_scene::scene::ModelKind::MassSpring,
-            _ => folio_scene::scene::ModelKind::Dog,
-        };
-        kind.effects().join(",")
+        self.app.available_effects().join(",")
     }
 
     /// Sets the viewport (CSS pixels).
