@@ -30,6 +30,7 @@ pub mod name;
 pub mod number;
 #[cfg(feature = "fixture-reach")]
 pub mod reach;
+pub mod reader;
 pub mod scene;
 pub mod settings;
 #[cfg(feature = "sheet")]

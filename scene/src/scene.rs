@@ -1,4 +1,5 @@
-//! Scene files: TOML, read with serde (the format is documented in `docs/scenes.md`).
+//! Scene files: TOML, parsed by `toml` and read with serde through [`crate::reader`] (the
+//! format is documented in `docs/scenes.md`).
 //! Every error names its line and column; a scene that does not check is never run.
 
 use core::ops::Range;
@@ -7,11 +8,11 @@ use folio_book::{BookParams, Weights};
 use folio_tearing::TearSettings;
 use folio_tearing::sheet::SheetSettings;
 use serde::Deserialize;
-use serde::de::IntoDeserializer;
 use toml::Spanned;
 use toml::de::DeTable;
 
 use crate::keys::{self, KeySpans};
+use crate::reader::{self, ReadError};
 
 /// A scene: which page model, which book or page, which input, for how long.
 #[derive(Clone, Debug, Deserialize)]
@@ -459,14 +460,12 @@ impl Scene {
     /// wrong type, a value out of range, an input that does not fit the model.
     pub fn parse(text: &str) -> Result<Self, SceneError> {
         let syntax = |e: toml::de::Error| SceneError::at(text, e.span(), e.message().trim());
+        let schema = |e: ReadError| SceneError::at(text, e.span, e.message.trim());
         let mut doc = DeTable::parse(text).map_err(syntax)?;
         let notch = keys::take(&mut doc, "sheet", "notch");
         let keys = KeySpans::of(doc.get_ref());
-        let mut scene = Self::deserialize(doc.into_deserializer()).map_err(syntax)?;
-        scene.notch = notch
-            .map(|v| Deserialize::deserialize(v.into_deserializer()))
-            .transpose()
-            .map_err(syntax)?;
+        let mut scene: Self = reader::read_table(doc).map_err(schema)?;
+        scene.notch = notch.map(reader::read).transpose().map_err(schema)?;
         scene.keys = keys;
         scene.check(text)?;
         Ok(scene)
