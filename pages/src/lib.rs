@@ -278,9 +278,26 @@ pub fn mesh<T: Real>(
 ) -> Result<(), PageError> {
     let mut samples = alloc::vec![T::Vec3::ZERO; grid.len()];
     model.sample(grid, &mut samples)?;
+    mesh_samples::<T>(grid, &samples, model.size()[0].to_f64(), thickness, out)
+}
+
+/// The render mesh of a page already sampled on `grid` ([`PageModel::sample`] into
+/// `samples`, $N$ = `grid.len()` points), for a caller that also measures the samples
+/// ([`frame_metrics`]) and so samples once; as [`mesh`] otherwise. `page_width` is the
+/// page's width $W$ (page units), the length each row of the offset surfaces is kept at.
+///
+/// # Errors
+/// As [`mesh`].
+pub fn mesh_samples<T: Real>(
+    grid: QuadGrid,
+    samples: &[T::Vec3],
+    page_width: f64,
+    thickness: f64,
+    out: &mut TriMesh,
+) -> Result<(), PageError> {
     let positions: alloc::vec::Vec<[f64; 3]> = samples
         .iter()
         .map(|p| [p.x().to_f64(), p.y().to_f64(), p.z().to_f64()])
         .collect();
-    page_mesh(out, grid, &positions, thickness, model.size()[0].to_f64()).map_err(PageError::Mesh)
+    page_mesh(out, grid, &positions, thickness, page_width).map_err(PageError::Mesh)
 }

@@ -220,8 +220,14 @@ impl Model {
             Self::Book(book) => book
                 .mesh(out)
                 .map_err(|e| WebError::new(format!("cannot mesh the book: {e}"))),
-            Self::Page(p) => folio_pages::mesh(p.model.as_ref(), p.grid, PAGE_THICKNESS, out)
-                .map_err(|e| WebError::new(format!("cannot mesh the page: {e}"))),
+            Self::Page(p) => {
+                let fail =
+                    |e: folio_pages::PageError| WebError::new(format!("cannot mesh the page: {e}"));
+                p.model.sample(p.grid, &mut p.samples).map_err(fail)?;
+                let width = p.model.size()[0];
+                folio_pages::mesh_samples::<f64>(p.grid, &p.samples, width, PAGE_THICKNESS, out)
+                    .map_err(fail)
+            }
         }
     }
 
@@ -251,17 +257,16 @@ impl Model {
     }
 
     /// The active page's largest relative edge stretch $\lvert \ell/\ell_0 - 1\rvert$ (seed
-    /// `000_…` Sec. 5), over the book's page grid or the page model's render grid; `None`
-    /// with no active page.
-    pub fn stretch(&mut self) -> Option<f64> {
+    /// `000_…` Sec. 5), over the book's page grid or the page model's render grid (the
+    /// samples of the last [`Model::mesh`], which samples once for both); `None` with no
+    /// active page.
+    #[must_use]
+    pub fn stretch(&self) -> Option<f64> {
         match self {
             Self::Book(book) => book.stretch().map(|(max, _)| max),
-            Self::Page(p) => {
-                p.model.sample(p.grid, &mut p.samples).ok()?;
-                folio_pages::frame_metrics(p.grid, p.model.size(), &p.samples)
-                    .ok()
-                    .map(|m| m.max_stretch)
-            }
+            Self::Page(p) => folio_pages::frame_metrics(p.grid, p.model.size(), &p.samples)
+                .ok()
+                .map(|m| m.max_stretch),
         }
     }
 

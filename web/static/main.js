@@ -22,7 +22,9 @@ const state = {
   error: null,
   status: null,
   frames: 0,
-  badFrames: 0,
+  // Frames whose advance() said false: a step failed or the mesh went bad (the status's
+  // failedSteps and badFrames say which).
+  failedFrames: 0,
   stepMs: 0,
   bench: null,
 };
@@ -200,7 +202,7 @@ async function main() {
     state.status = s;
     state.frames += 1;
     state.stepMs = averaged;
-    if (!good) state.badFrames += 1;
+    if (!good) state.failedFrames += 1;
     const memory = wasm.memory.buffer;
     const v = folio.vertex_count();
     renderer.setMesh(
