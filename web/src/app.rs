@@ -56,6 +56,7 @@ pub struct App {
     tally: Tally,
     table: f32,
     reach: f32,
+    stage: [[f64; 3]; 2],
     effects: Vec<String>,
     kind: ModelKind,
 }
@@ -97,6 +98,7 @@ impl App {
             tally: Tally::default(),
             table,
             reach,
+            stage: bounds,
             effects: scene.effect_names(),
             kind: *scene.model.get_ref(),
         })
@@ -217,6 +219,13 @@ impl App {
             self.tally.bad_frames += 1;
         }
         meshed && stretch.is_finite() && outcome.failed == 0
+    }
+
+    /// The box the camera frames (min and max corners, page units): the first mesh, with
+    /// room above it for a page standing over the spine; what casts and receives shadows.
+    #[must_use]
+    pub fn stage(&self) -> [[f64; 3]; 2] {
+        self.stage
     }
 
     /// The highest vertex of the last good mesh (page units; the table is below it).

@@ -146,6 +146,13 @@ impl Folio {
         self.app.top()
     }
 
+    /// The box the camera frames, which the page's shadow map frames too: its min corner
+    /// then its max corner (6 numbers, page units; [`App::stage`]).
+    #[must_use]
+    pub fn stage(&self) -> Vec<f64> {
+        self.app.stage().concat()
+    }
+
     /// Where `positions` starts in the module's memory (bytes): $3V$ floats.
     #[must_use]
     pub fn positions_ptr(&self) -> usize {

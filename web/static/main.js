@@ -95,6 +95,7 @@ async function main() {
       const next = new Folio(text, effects, view.clientWidth, view.clientHeight);
       if (folio) folio.free();
       folio = next;
+      renderer.setStage(folio.stage());
       sceneText = text;
       errorBox.hidden = true;
       state.error = null;
