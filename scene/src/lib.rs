@@ -1,7 +1,8 @@
 //! # folio-scene
 //!
 //! Folio's scene files (TOML, `docs/scenes.md`): the scene types and their validation with
-//! line and column ([`scene`]), the timed events and hands that drive a run ([`events`],
+//! line and column ([`scene`]), read from `toml`'s parsed document by Folio's own serde
+//! deserializer ([`reader`]), the timed events and hands that drive a run ([`events`],
 //! [`hands`]), the recorded fixtures and built-in scenes they name ([`fixtures`],
 //! [`builtin`]), the frame clock (a frame is 1/60 s; [`clock`]), the model settings a scene
 //! describes ([`settings`]) and the tearing sheet of a sheet scene ([`sheet`]); the limits a
