@@ -218,7 +218,8 @@ export function stageLight(lo, hi) {
   const centre = lo.map((x, k) => 0.5 * (x + hi[k]));
   const diagonal = Math.hypot(...sub(hi, lo));
   const distance = LIGHT_DISTANCE * diagonal;
-  const light = centre.map((x, k) => x + distance * normalize(BOOK_LIGHT)[k]);
+  const direction = normalize(BOOK_LIGHT);
+  const light = centre.map((x, k) => x + distance * direction[k]);
   const view = lookAt(light, centre);
   const corners = [];
   for (const x of [lo[0], hi[0]]) {
