@@ -84,6 +84,12 @@ pub fn print_figures(report: &TurnReport, cx: &Context) {
         r.max_frame
     );
     hprintln!(
+        "accuracy over the active steps: max DOG residual {} e-9, edge stretch max {} ppm, mean of each step's max {} ppm",
+        report.accuracy.dog_residual_e9,
+        report.accuracy.stretch_ppm,
+        report.accuracy.stretch_mean_ppm()
+    );
+    hprintln!(
         "setup: Book::new {} instructions ({} settling steps); inputs: at most {} instructions before one step",
         report.setup_instructions,
         report.settle_steps,
@@ -169,8 +175,8 @@ pub fn print_checks(report: &TurnReport, cx: &Context) -> bool {
     let passed = c.passed();
     hprintln!(
         "summary: {} {} active_median={} active_p99={} active_max={} resting_median={} \
-         resting_p99={} resting_max={} heap_peak={} flash={} stack={} merge_frame={} \
-         instructions_per_tick={} checks={}",
+         resting_p99={} resting_max={} setup={} heap_peak={} flash={} stack={} \
+         dog_residual_e9={} stretch_ppm={} stretch_mean_ppm={} merge_frame={} instructions_per_tick={} checks={}",
         cx.precision,
         cx.machine,
         report.active.median,
@@ -179,9 +185,13 @@ pub fn print_checks(report: &TurnReport, cx: &Context) -> bool {
         report.resting.median,
         report.resting.p99,
         report.resting.max,
+        report.setup_instructions,
         report.heap.peak,
         cx.footprint.flash,
         cx.stack,
+        report.accuracy.dog_residual_e9,
+        report.accuracy.stretch_ppm,
+        report.accuracy.stretch_mean_ppm(),
         merge_frame,
         cx.factor,
         mark(passed)

@@ -1,13 +1,17 @@
 //! Per-step instruction counts and their summary (median, 99th percentile and max) for one
-//! kind of step.
+//! kind of step. The counts live in static buffers ([`StepCounts::take`]), not on the stack:
+//! the stack high-water mark is then the book's own.
 
 /// Most steps one [`StepCounts`] records.
 pub const MAX_STEPS: usize = 1024;
 
-/// Instruction counts of the steps of one kind (active or resting), in step order.
+/// Instruction counts of the steps of one kind (active or resting), in step order:
+/// $12 \cdot$ [`MAX_STEPS`] bytes in `.bss`.
 pub struct StepCounts {
-    /// `(frame, instructions)` of each recorded step.
-    steps: [(u32, u64); MAX_STEPS],
+    /// Frame of each recorded step.
+    frames: [u32; MAX_STEPS],
+    /// Instructions of each recorded step.
+    instructions: [u64; MAX_STEPS],
     len: usize,
 }
 
@@ -30,41 +34,56 @@ pub struct Summary {
     pub total: u64,
 }
 
+/// The two static buffers of a run: active steps, then resting steps.
+pub type Buffers = (&'static mut StepCounts, &'static mut StepCounts);
+
 impl StepCounts {
     /// No steps yet.
     #[must_use]
     pub const fn new() -> Self {
         Self {
-            steps: [(0, 0); MAX_STEPS],
+            frames: [0; MAX_STEPS],
+            instructions: [0; MAX_STEPS],
             len: 0,
         }
+    }
+
+    /// The run's two buffers, in `.bss`; `None` when they were taken already (they can be
+    /// taken once).
+    #[must_use]
+    pub fn take() -> Option<Buffers> {
+        let active = cortex_m::singleton!(: StepCounts = StepCounts::new())?;
+        let resting = cortex_m::singleton!(: StepCounts = StepCounts::new())?;
+        Some((active, resting))
     }
 
     /// Records the step of `frame` and its instructions; `false` (nothing recorded) when
     /// [`MAX_STEPS`] are already recorded.
     pub fn push(&mut self, frame: u32, instructions: u64) -> bool {
-        let Some(slot) = self.steps.get_mut(self.len) else {
+        if self.len == MAX_STEPS {
             return false;
-        };
-        *slot = (frame, instructions);
+        }
+        self.frames[self.len] = frame;
+        self.instructions[self.len] = instructions;
         self.len += 1;
         true
     }
 
-    /// Median, 99th percentile and max.
+    /// Median, 99th percentile and max; sorts the counts in place (the step order is lost,
+    /// so it is called once, at the end).
     #[must_use]
-    pub fn summary(&self) -> Summary {
-        let steps = &self.steps[..self.len];
+    pub fn summary(&mut self) -> Summary {
         let (mut max, mut max_frame, mut total) = (0, 0, 0);
-        let mut sorted = [0u64; MAX_STEPS];
-        for (slot, &(frame, count)) in sorted.iter_mut().zip(steps) {
-            *slot = count;
+        for (&frame, &count) in self.frames[..self.len]
+            .iter()
+            .zip(&self.instructions[..self.len])
+        {
             total += count;
             if count > max {
                 (max, max_frame) = (count, frame);
             }
         }
-        let sorted = &mut sorted[..self.len];
+        let sorted = &mut self.instructions[..self.len];
         sorted.sort_unstable();
         Summary {
             steps: self.len,

@@ -1,4 +1,5 @@
-//! The page turn: the default book (`BookSettings::default()`, seed 000's DOG book) plays
+//! The page turn: the default book (`BookSettings::default()`, seed 000's DOG book, with the
+//! solver's diagnostics off: [`settings`]) plays
 //! the recorded page turn of the integration tests (`tests/fixtures/page_turn.input`: camera
 //! rays for a grab near the right page's outer edge at frame 30, 100 frames of drag over the
 //! spine, the release at frame 131, then the page falls and settles; 750 frames), the same
@@ -43,8 +44,60 @@ pub struct TurnReport {
     pub input_allocations: usize,
     /// Heap counts at the end.
     pub heap: HeapStats,
+    /// The page turn's accuracy over its active steps.
+    pub accuracy: Accuracy,
     /// The result checks.
     pub checks: Checks,
+}
+
+/// The page turn's accuracy over its active steps, in whole numbers (the firmware prints no
+/// floats): the largest DOG residual $\max\lvert C_{DOG}\rvert$ after any active step, in
+/// units of $10^{-9}$, and the relative edge stretch $\max\lvert\ell/\ell_0 - 1\rvert$ of
+/// each step, its largest and its mean over the active steps (the figure `book_report`
+/// calls "mean max stretch"), in parts per million, all rounded up. A non-finite value reads
+/// as `u64::MAX`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Accuracy {
+    /// Largest DOG residual, $10^{-9}$.
+    pub dog_residual_e9: u64,
+    /// Largest edge stretch, parts per million.
+    pub stretch_ppm: u64,
+    /// Sum over the active steps of each one's largest edge stretch, parts per million.
+    stretch_sum_ppm: u64,
+    /// Active steps recorded.
+    steps: u64,
+}
+
+impl Accuracy {
+    /// Takes in the active page of `book` after a step.
+    fn record(&mut self, book: &Book<Real>) {
+        let whole = |value: Real, unit: f64| {
+            let v = f64::from(value) * unit;
+            if v.is_finite() && v >= 0.0 {
+                // Rounded up: a bound read off this never flatters.
+                let whole = v as u64;
+                whole + u64::from((whole as f64) < v)
+            } else {
+                u64::MAX
+            }
+        };
+        if let Some(dog) = book.dog_residual() {
+            self.dog_residual_e9 = self.dog_residual_e9.max(whole(dog, 1e9));
+        }
+        if let Some((max, _)) = book.stretch() {
+            let ppm = whole(max, 1e6);
+            self.stretch_ppm = self.stretch_ppm.max(ppm);
+            self.stretch_sum_ppm = self.stretch_sum_ppm.saturating_add(ppm);
+            self.steps += 1;
+        }
+    }
+
+    /// Mean over the active steps of each one's largest edge stretch, parts per million,
+    /// rounded up (0 with no step).
+    #[must_use]
+    pub fn stretch_mean_ppm(&self) -> u64 {
+        self.stretch_sum_ppm.div_ceil(self.steps.max(1))
+    }
 }
 
 /// The result checks (module docs).
@@ -115,6 +168,8 @@ pub enum TurnError {
         /// Frames in the fixture.
         frames: u32,
     },
+    /// The static step-count buffers were taken already ([`StepCounts::take`]).
+    Buffers,
 }
 
 impl core::fmt::Display for TurnError {
@@ -132,6 +187,7 @@ impl core::fmt::Display for TurnError {
             Self::TooManyFrames { frames } => {
                 write!(f, "the fixture has {frames} frames, too many")
             }
+            Self::Buffers => write!(f, "the step-count buffers were taken already"),
         }
     }
 }
@@ -169,6 +225,18 @@ fn all_finite(book: &Book<Real>) -> bool {
         .all(|p| p.x().is_finite() && p.y().is_finite() && p.z().is_finite())
 }
 
+/// The book the firmware plays: `BookSettings::default()` with the solver's diagnostics
+/// off. `check_final_residual` evaluates the gradient and the Jacobian once more after the
+/// last Newton iteration only so that the status can say `Converged`; it changes nothing in
+/// the state, and the firmware reads no such status: it checks its results itself (module
+/// docs). Measured with it on: 1.1 M instructions of a median active M4F step (issue 40).
+#[must_use]
+pub fn settings() -> BookSettings<Real> {
+    let mut settings = BookSettings::default();
+    settings.solver.check_final_residual = false;
+    settings
+}
+
 /// Plays the page turn, printing one line per step; `factor` is instructions per SysTick
 /// tick ([`crate::clock::Calibration::factor`]).
 ///
@@ -184,7 +252,7 @@ pub fn run(clock: &Clock, factor: u64, heap: &CountingHeap) -> Result<TurnReport
     }
 
     let t0 = clock.now();
-    let mut book = Book::<Real>::new(BookSettings::default()).map_err(|_| TurnError::Setup)?;
+    let mut book = Book::<Real>::new(settings()).map_err(|_| TurnError::Setup)?;
     let setup_instructions = (clock.now() - t0) * factor;
     let setup_heap = heap.stats().current;
     hprintln!(
@@ -197,8 +265,8 @@ pub fn run(clock: &Clock, factor: u64, heap: &CountingHeap) -> Result<TurnReport
         "step frame phase status instructions dofs rows iterations halvings corrections collision-rounds"
     );
 
-    let mut active = StepCounts::new();
-    let mut resting = StepCounts::new();
+    let (active, resting) = StepCounts::take().ok_or(TurnError::Buffers)?;
+    let mut accuracy = Accuracy::default();
     let mut checks = Checks {
         merges: 0,
         first_merge: None,
@@ -229,6 +297,7 @@ pub fn run(clock: &Clock, factor: u64, heap: &CountingHeap) -> Result<TurnReport
             resting.push(frame, instructions);
         } else {
             active.push(frame, instructions);
+            accuracy.record(&book);
         }
         if !report.solver.status.advanced() {
             checks.stalled_steps += 1;
@@ -271,6 +340,7 @@ pub fn run(clock: &Clock, factor: u64, heap: &CountingHeap) -> Result<TurnReport
         step_allocations,
         input_allocations,
         heap: heap.stats(),
+        accuracy,
         checks,
     })
 }
