@@ -496,24 +496,37 @@ impl<T: Real> Equilibration<T> {
 
     /// Recomputes $D$ for `values` (Ruiz: each pass divides $d_i$ by the square root of the
     /// largest magnitude in row $i$ of $D K D$).
+    ///
+    /// The pass is one sweep over the stored upper triangle: entry $(r, c)$, $r \le c$,
+    /// updates row $r$'s largest magnitude in memory and column $c$'s in a register (no later
+    /// column has an entry in row $c$ before its own column is done: they come after it),
+    /// with $d_c$ read once per column. The maxima are exact, so the order changes no bit.
     fn update(&mut self, p: &KktPattern, values: &[T]) {
-        self.d.iter_mut().for_each(|d| *d = T::ONE);
+        let n = p.order();
+        let (d, largest) = (&mut self.d[..n], &mut self.largest[..n]);
+        d.iter_mut().for_each(|d| *d = T::ONE);
         for _ in 0..RUIZ_PASSES {
-            self.largest.iter_mut().for_each(|m| *m = T::ZERO);
-            for c in 0..p.order() {
+            largest.iter_mut().for_each(|m| *m = T::ZERO);
+            for c in 0..n {
                 let range = p.col_ptr[c] as usize..p.col_ptr[c + 1] as usize;
+                let dc = d[c];
+                let mut column = T::ZERO;
                 for (&r, &value) in p.row_idx[range.clone()].iter().zip(&values[range]) {
                     let r = r as usize;
-                    let v = self.d[r] * value * self.d[c];
+                    let v = d[r] * value * dc;
                     let a = if v < T::ZERO { -v } else { v };
-                    for k in [r, c] {
-                        if a > self.largest[k] {
-                            self.largest[k] = a;
-                        }
+                    if a > largest[r] {
+                        largest[r] = a;
+                    }
+                    if a > column {
+                        column = a;
                     }
                 }
+                if column > largest[c] {
+                    largest[c] = column;
+                }
             }
-            for (d, &m) in self.d.iter_mut().zip(&self.largest) {
+            for (d, &m) in d.iter_mut().zip(largest.iter()) {
                 if m > T::ZERO && m.is_finite() {
                     *d /= folio_kernels::math::sqrt(m);
                 }

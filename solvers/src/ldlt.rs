@@ -4,9 +4,12 @@
 //! Up-looking (Davis, "Algorithm 849: A concise sparse Cholesky factorization package",
 //! 2005; as QDLDL): row $k$ of $L$ solves $L_{0:k,0:k}\thinspace y = A_{0:k,k}$ over the
 //! row's nonzero columns $j$, $L_{kj} = y_j / d_j$, $d_k = a_{kk} - \sum_j L_{kj} y_j$. The
-//! row's columns are the reach of column $k$'s entries up the elimination tree, found as the
-//! row is factorized and taken in ascending $j$ (so that the rounding does not depend on the
-//! walk's order); $L_{kj}$ goes to the next free position of column $j$.
+//! row's columns are the reach of column $k$'s entries up the elimination tree, taken in
+//! ascending $j$ (so that the rounding does not depend on a walk's order); the analysis
+//! hands them over as $L$'s row structure ([`Symbolic`]), so a row's factorization walks no
+//! tree and sorts nothing. $L_{kj}$ goes to the next free position of column $j$. (The
+//! halves of a split factor still find their separator rows' columns by walking the tree:
+//! they see only part of each row.)
 //! The expected pivot sign $s_k$ is known (+ primal, − constraint row); a pivot with
 //! $s_k d_k \le \epsilon$ is replaced by $s_k \delta$ and counted. The factor is then that of
 //! $K + E$ with a small diagonal $E$, which iterative refinement against $K$ corrects.
@@ -431,11 +434,10 @@ impl<'a, T: Real> Part<'a, T> {
     ) -> FactorOutcome {
         let (s, values) = (job.symbolic, job.values);
         let (a_row, a_slot) = (&arrays.a_row, &arrays.a_slot);
-        let (y, reach, seen) = (&mut *self.y, &mut *self.reach, &mut *self.seen);
+        let y = &mut *self.y;
         let mut pivots = Pivots::default();
         for k in rows {
             let mut diagonal = T::ZERO;
-            let (mut count, mut low) = (0, k);
             for e in s.a_ptr[k] as usize..s.a_ptr[k + 1] as usize {
                 let i = a_row[e].get();
                 let v = values.get(a_slot[e].get(), i, k);
@@ -444,15 +446,14 @@ impl<'a, T: Real> Part<'a, T> {
                     continue;
                 }
                 y[i] += v;
-                low = low.min(i);
-                count = walk(reach, seen, &s.parent, (i, k), count);
             }
-            let row = ascending(&mut reach[..count], seen, low, k);
+            // Row k's columns, ascending, from the analysis (module docs).
+            let row = &arrays.r_col[s.r_ptr[k] as usize..s.r_ptr[k + 1] as usize];
             let diagonal = self.columns.eliminate(y, s, &arrays.l_row, row, diagonal);
             if let Err(outcome) =
                 pivots.set(self.columns.d, k - self.columns.first, job, k, diagonal)
             {
-                clear(y, seen);
+                clear(y, &mut *self.seen);
                 return outcome;
             }
         }
@@ -583,12 +584,12 @@ impl<'a, T: Real> Columns<'a, T> {
     /// free position, $y \mathrel{-}= L_{:j}\thinspace y_j$ over the column's earlier rows,
     /// and the returned diagonal is `diagonal` $- \sum_j L_{kj} y_j$. Leaves $y_j = 0$.
     #[inline]
-    fn eliminate<I: Index>(
+    fn eliminate<I: Index, R: Index>(
         &mut self,
         y: &mut [T],
         s: &Symbolic,
         l_row: &[I],
-        row: &[u32],
+        row: &[R],
         mut diagonal: T,
     ) -> T {
         let (l, d, fill) = (&mut *self.l, &*self.d, &mut *self.fill);
@@ -596,7 +597,7 @@ impl<'a, T: Real> Columns<'a, T> {
         assert!(y.len() >= s.n, "work vector shorter than the analysis");
         // Row k's columns j, ascending: L_kj = y_j / d_j, and y -= L_{:j} y_j.
         for &j in row {
-            let j = j as usize;
+            let j = j.get();
             let pos = fill[j - first] as usize;
             fill[j - first] += 1;
             let yj = y[j];

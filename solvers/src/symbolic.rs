@@ -2,10 +2,12 @@
 //!
 //! From the upper KKT pattern and an [`Ordering`] it builds the permuted column lists with
 //! their source slots, the elimination tree (Liu's algorithm with path compression) and the
-//! column structure of $L$. It stores no row lists: the numeric phase ([`crate::ldlt`])
-//! finds each row's pattern as it runs, as the up-looking $LDL^\top$ of Davis (LDL, 2005) and
-//! QDLDL do: the reach of row $k$'s entries up the elimination tree. The stored indices are
-//! `u16` when the order and the pattern's size allow it, `u32` otherwise ([`Index`]).
+//! column structure of $L$, and the row structure of $L$ too: the columns of each row, in
+//! ascending order, which the up-looking numeric phase ([`crate::ldlt`]) walks instead of
+//! finding each row's pattern as it runs (the reach of row $k$'s entries up the elimination
+//! tree, then a sort, as Davis's LDL (2005) and QDLDL do): the numeric phase then does
+//! little but arithmetic. The stored indices are `u16` when the order and the pattern's
+//! size allow it, `u32` otherwise ([`Index`]).
 
 use alloc::vec;
 use alloc::vec::Vec;
@@ -20,8 +22,8 @@ use crate::room::{Room, refill};
 ///
 /// Owns the permutation, the pivot signs and the elimination tree ($n$ entries each), the
 /// permuted upper matrix's structure ($n + 1$ column pointers, and a row and a value slot per
-/// stored entry) and the structure of $L$ ($n + 1$ column pointers, a row index per
-/// nonzero). Pointers and the permutation are 32-bit; rows and slots are 16-bit when
+/// stored entry) and the structure of $L$ twice: by columns ($n + 1$ column pointers, a row
+/// index per nonzero) and by rows ($n + 1$ row pointers, a column index per nonzero). Pointers and the permutation are 32-bit; rows and slots are 16-bit when
 /// $n \le 65536$ and $\mathrm{nnz}(A) \le 65536$, 32-bit otherwise ([`Symbolic::indices`]). All
 /// of it is allocated by [`Symbolic::analyse`] at setup (once per topology), or refilled by
 /// [`Symbolic::reanalyse`] within the room of [`Symbolic::reserve`]. Nothing here
@@ -47,6 +49,9 @@ pub struct Symbolic {
     pub(crate) parent: Vec<u32>,
     /// Column pointers of the strictly lower part of $L$.
     pub(crate) l_ptr: Vec<u32>,
+    /// Row pointers of the strictly lower part of $L$ (its columns in
+    /// [`Arrays::r_col`]).
+    pub(crate) r_ptr: Vec<u32>,
     /// The rows and slots, in the width chosen by [`Symbolic::analyse`].
     pub(crate) structure: Structure,
     /// Hash of everything the numeric phase reads (see [`Symbolic::fingerprint`]).
@@ -99,6 +104,9 @@ pub(crate) struct Arrays<I> {
     pub a_slot: Vec<I>,
     /// Row indices of $L$ (ascending within a column).
     pub l_row: Vec<I>,
+    /// Column indices of $L$ by rows (ascending within a row): row $k$'s columns at
+    /// `r_ptr[k]..r_ptr[k + 1]`, the order in which the up-looking factor eliminates them.
+    pub r_col: Vec<I>,
 }
 
 impl Symbolic {
@@ -134,6 +142,7 @@ impl Symbolic {
             &mut self.a_ptr,
             &mut self.parent,
             &mut self.l_ptr,
+            &mut self.r_ptr,
         ] {
             v.room_for(n + 1);
         }
@@ -162,6 +171,7 @@ impl Symbolic {
             structural_zero: Vec::new(),
             parent: Vec::new(),
             l_ptr: vec![0],
+            r_ptr: vec![0],
             structure: Structure::Narrow(Arrays::default()),
             fingerprint: 0,
             split: None,
@@ -289,6 +299,7 @@ impl Symbolic {
             &mut s.next,
             &mut s.mark,
         );
+        row_columns(&self.l_ptr, &a.l_row, &mut self.r_ptr, &mut a.r_col);
         self.fingerprint = Fingerprint::new()
             .words(&self.perm, |&w| w)
             .words(&self.a_ptr, |&w| w)
@@ -429,6 +440,7 @@ impl<I> Default for Arrays<I> {
             a_row: Vec::new(),
             a_slot: Vec::new(),
             l_row: Vec::new(),
+            r_col: Vec::new(),
         }
     }
 }
@@ -439,6 +451,7 @@ impl<I: Index> Arrays<I> {
         self.a_row.room_for(nnz);
         self.a_slot.room_for(nnz);
         self.l_row.room_for(nnz_l);
+        self.r_col.room_for(nnz_l);
     }
 }
 
@@ -524,6 +537,31 @@ fn column_rows<I: Index>(
             fill[j] += 1;
         });
     }
+}
+
+/// The row structure of $L$ from its column structure (`l_ptr`, `l_row`): `r_ptr` gets
+/// $n + 1$ row pointers and `r_col` each row's columns, ascending (the columns are read in
+/// order, so each row receives them in order).
+fn row_columns<I: Index>(l_ptr: &[u32], l_row: &[I], r_ptr: &mut Vec<u32>, r_col: &mut Vec<I>) {
+    let n = l_ptr.len() - 1;
+    refill(r_ptr, n + 1, 0);
+    for &r in l_row {
+        r_ptr[r.get() + 1] += 1;
+    }
+    prefix_sum(r_ptr);
+    refill(r_col, l_row.len(), I::new(0));
+    // r_ptr[r] serves as row r's next free position, then is shifted back.
+    for j in 0..n {
+        for &r in &l_row[l_ptr[j] as usize..l_ptr[j + 1] as usize] {
+            let at = &mut r_ptr[r.get()];
+            r_col[*at as usize] = I::new(j);
+            *at += 1;
+        }
+    }
+    for k in (1..=n).rev() {
+        r_ptr[k] = r_ptr[k - 1];
+    }
+    r_ptr[0] = 0;
 }
 
 /// Calls `visit` on every column $j < k$ of row $k$ of $L$: the elimination-tree paths from
