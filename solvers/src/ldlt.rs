@@ -971,6 +971,48 @@ mod tests {
         z
     }
 
+    /// The analysis's row structure of $L$ is each row's reach up the elimination tree,
+    /// ascending: what the factor found as it ran before the analysis handed it over
+    /// (`walk` and `ascending`, which a split factor's separator rows still use), for a
+    /// chain under every order, with and without the constraint Hessian.
+    #[test]
+    fn row_structure_is_each_rows_sorted_reach() {
+        for hessian in [false, true] {
+            let pattern = Chain::new(23).pattern(hessian);
+            for ordering in [
+                Ordering::Natural,
+                Ordering::Amd,
+                Ordering::AmdDelayedDuals,
+                Ordering::AmdQuasiDefinite,
+            ] {
+                let s = Symbolic::analyse(&pattern, ordering);
+                let Structure::Narrow(arrays) = &s.structure else {
+                    panic!("a small chain takes 16-bit indices");
+                };
+                let n = s.n;
+                let (mut reach, mut seen) = (vec![0u32; n], vec![0usize; n.div_ceil(BITS)]);
+                assert_eq!(s.r_ptr.len(), n + 1);
+                assert_eq!(s.r_ptr[n] as usize, s.nnz_l());
+                for k in 0..n {
+                    let (mut count, mut low) = (0, k);
+                    for e in s.a_ptr[k] as usize..s.a_ptr[k + 1] as usize {
+                        let i = arrays.a_row[e] as usize;
+                        if i < k {
+                            low = low.min(i);
+                            count = super::walk(&mut reach, &mut seen, &s.parent, (i, k), count);
+                        }
+                    }
+                    let expected = ascending(&mut reach[..count], &mut seen, low, k).to_vec();
+                    let row: Vec<u32> = arrays.r_col[s.r_ptr[k] as usize..s.r_ptr[k + 1] as usize]
+                        .iter()
+                        .map(|&j| u32::from(j))
+                        .collect();
+                    assert_eq!(row, expected, "row {k}, {ordering:?}, hessian {hessian}");
+                }
+            }
+        }
+    }
+
     /// $K = [[4, 2], [2, 0]]$: $L_{10} = 1/2$, $D = (4, -1)$, and $K (1/2, 0) = (2, 1)$.
     #[test]
     fn two_by_two_kkt() {
