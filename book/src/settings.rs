@@ -175,6 +175,21 @@ pub struct BookSettings<T: Real> {
     pub merge_speed: T,
     /// See `merge_speed`.
     pub merge_frames: u32,
+    /// A book at rest (no active page, no page in flight) falls asleep once every node of
+    /// its blocks and cover has been slower than this (page units per second) for
+    /// `sleep_frames` consecutive steps: its velocities are zeroed and its steps do no
+    /// solver work until an input makes a page active ([`crate::Book::is_asleep`]; seed
+    /// 000's "a book at rest simulates blocks only", taken to its end). A net force above
+    /// $2 m v_{sleep}/h$ on a node of mass $m$ would raise its speed from below
+    /// $v_{sleep}$ to above it within one step, so the test bounds the forces too: at the
+    /// defaults, by 1.2 % of a node's weight. In ten steps under the threshold a node moves
+    /// at most $10 v_{sleep} h$, $1.7 \cdot 10^{-4}$ page units. 0 keeps the book awake.
+    /// Default $10^{-3}$: the default book falls asleep 10 steps after it is built (its
+    /// `f32` nodes drift at up to $3 \cdot 10^{-4}$, its `f64` ones at $3 \cdot 10^{-11}$),
+    /// and after a page merges once the blocks' slow rocking has died down.
+    pub sleep_speed: T,
+    /// See `sleep_speed`; at least 1. Default 10.
+    pub sleep_frames: u32,
     /// After the step and the collision handling, the constraint projection
     /// ([`folio_solvers::Solver::project_constraints`]) iterates until $\lVert C\rVert_\infty$ is at
     /// most this (dimensionless for the DOG rows, page units for the others)...
@@ -261,6 +276,8 @@ impl<T: Real> Default for BookSettings<T> {
             tent_height: T::from_f64(0.6),
             merge_speed: T::from_f64(0.5),
             merge_frames: 10,
+            sleep_speed: T::from_f64(1e-3),
+            sleep_frames: 10,
             constraint_tolerance: T::from_f64(1e-4),
             max_corrections: if T::EPSILON.to_f64() < 1e-10 { 5 } else { 3 },
             contact_friction: T::ZERO,
@@ -372,6 +389,7 @@ impl<T: Real> BookSettings<T> {
             ("air_drag", self.air_drag),
             ("contact_stiffness", self.contact_stiffness),
             ("contact_friction", self.contact_friction),
+            ("sleep_speed", self.sleep_speed),
         ];
         for (field, v) in others {
             check(non_negative(v), field, "finite and >= 0")?;
@@ -405,6 +423,7 @@ impl<T: Real> BookSettings<T> {
             "contact_pin_weight",
             "finite and >= 1",
         )?;
+        check(self.sleep_frames >= 1, "sleep_frames", "at least 1")?;
         check(
             (1..=16).contains(&self.collision_rounds),
             "collision_rounds",

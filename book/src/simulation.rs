@@ -153,6 +153,8 @@ pub struct BookStepReport<T> {
     pub snapshot: bool,
     /// The block the active page merged into at the end of this step.
     pub merged: Option<BlockSide>,
+    /// The book was asleep: the step did no solver work ([`Book::is_asleep`]).
+    pub asleep: bool,
 }
 
 /// The simulated book (module docs).
@@ -181,6 +183,9 @@ pub struct Book<T: Real> {
     pub(crate) broad: PageBroadPhase<T>,
     /// The terms of the rest view and of the active view.
     pub(crate) census: [TermCensus; 2],
+    /// Consecutive steps at rest with every block and cover node slower than
+    /// [`BookSettings::sleep_speed`]; the book sleeps from `sleep_frames` on.
+    pub(crate) quiet_frames: u32,
 }
 
 /// What an input did.
@@ -195,6 +200,25 @@ pub enum InputOutcome {
     Release(bool),
     /// A finger-bookmarking request.
     Bookmark(BookmarkOutcome),
+}
+
+impl<T: Real> BookStepReport<T> {
+    /// The report of a step the book slept through: nothing solved, nothing moved.
+    fn asleep() -> Self {
+        Self {
+            solver: StepReport::new(StepStatus::Converged, false),
+            phase: Phase::AtRest,
+            dofs: 0,
+            constraint_rows: 0,
+            contacts: Contacts::default(),
+            collision_rounds: 0,
+            correction: Correction::default(),
+            census: TermCensus::default(),
+            snapshot: false,
+            merged: None,
+            asleep: true,
+        }
+    }
 }
 
 impl<T: Real> Book<T> {
@@ -249,6 +273,7 @@ impl<T: Real> Book<T> {
             pushed_normal,
             broad: PageBroadPhase::new(n),
             census: [TermCensus::default(); 2],
+            quiet_frames: 0,
         };
         book.place_page(BlockSide::Right, 1);
         book.update_masses();
@@ -276,7 +301,7 @@ impl<T: Real> Book<T> {
     fn settle(&mut self) -> Result<(), BookError> {
         let mut before = self.state.x.clone();
         for k in 0..self.settings.settle_steps {
-            self.step()?;
+            self.advance()?;
             let moved = self
                 .state
                 .x
@@ -429,11 +454,24 @@ impl<T: Real> Book<T> {
     }
 
     /// Advances the book by one time step: the implicit-Euler step of the blocks (and the
-    /// active page, if any), collision handling, and the merge of a page come to rest.
+    /// active page, if any), collision handling, and the merge of a page come to rest. A
+    /// book asleep ([`Book::is_asleep`]) does none of it: the step returns at once with a
+    /// report that says so.
     ///
     /// # Errors
     /// Only setup errors of the solver (they cannot occur after a successful [`Book::new`]).
     pub fn step(&mut self) -> Result<BookStepReport<T>, BookError> {
+        if self.is_asleep() {
+            return Ok(BookStepReport::asleep());
+        }
+        let report = self.advance()?;
+        self.doze(report.phase, report.dofs);
+        Ok(report)
+    }
+
+    /// [`Book::step`] awake: the step itself, whether or not the book would sleep (the
+    /// settling at construction has a test of its own).
+    fn advance(&mut self) -> Result<BookStepReport<T>, BookError> {
         let phase = self.phase();
         self.leash_pull();
         let drag = T::ONE / (T::ONE + self.settings.air_drag * self.settings.solver.time_step);
@@ -467,7 +505,45 @@ impl<T: Real> Book<T> {
             census,
             snapshot,
             merged,
+            asleep: false,
         })
+    }
+
+    /// The book is asleep ([`BookSettings::sleep_speed`]): at rest, with no page in
+    /// flight, and its blocks and cover slower than `sleep_speed` for the last
+    /// `sleep_frames` steps. Its steps do no solver work until an input makes a page active
+    /// (a grab, or a bookmark that sends a page flying), which wakes it.
+    #[must_use]
+    pub fn is_asleep(&self) -> bool {
+        self.quiet_frames >= self.settings.sleep_frames
+            && self.active.is_none()
+            && self.flips.is_empty()
+    }
+
+    /// Counts the step just taken in `phase` (a view of `dofs` unknowns) towards sleep:
+    /// quiet when the book was at rest, nothing is in flight, and every node of the view
+    /// (blocks and cover, `..page_offset`) is slower than `sleep_speed`. On the step that
+    /// makes the book fall asleep, their velocities are zeroed, so that it wakes from rest.
+    fn doze(&mut self, phase: Phase, dofs: usize) {
+        let s = &self.settings;
+        let po = self.terms.nodes.page_offset();
+        let at_rest = phase == Phase::AtRest && self.active.is_none() && self.flips.is_empty();
+        let quiet = at_rest
+            && dofs > 0
+            && s.sleep_speed > T::ZERO
+            && self.state.v[..po]
+                .iter()
+                .all(|v| math::length::<T>(*v) < s.sleep_speed);
+        self.quiet_frames = if quiet {
+            self.quiet_frames.saturating_add(1)
+        } else {
+            0
+        };
+        if self.is_asleep() {
+            self.state.v[..po]
+                .iter_mut()
+                .for_each(|v| *v = T::Vec3::ZERO);
+        }
     }
 
     /// The implicit step of the view the book is in (the blocks with the active page, the

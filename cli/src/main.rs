@@ -312,6 +312,9 @@ fn print_summary(report: &Report, out: &Path, seconds: f64) {
             "  work             at most {dofs} unknowns, {rows} rows, {terms} terms; {tests} collision tests"
         );
     }
+    if let Some(asleep) = s.asleep_frames {
+        println!("  asleep           {asleep} frames (no solver work: the book at rest, still)");
+    }
     if let Some([left, right, held]) = s.final_pages {
         println!("  pages at the end left {left}, right {right}, held {held}");
     }

@@ -63,6 +63,9 @@ pub struct FrameRecord {
     pub contact_tests: Option<usize>,
     /// A finger-bookmarking snapshot was taken (DOG book).
     pub snapshot: Option<bool>,
+    /// The book slept through every step of the frame: no solver work (DOG book;
+    /// `folio_book::Book::is_asleep`).
+    pub asleep: Option<bool>,
     /// Tear propagations in the frame (sheet).
     pub propagations: Option<u32>,
     /// Propagations the Griffith criterion allowed but the mesh refused (sheet).
@@ -106,6 +109,7 @@ impl FrameRecord {
             terms: None,
             contact_tests: None,
             snapshot: None,
+            asleep: None,
             propagations: None,
             refused: None,
             flips: None,
@@ -181,6 +185,8 @@ pub struct Summary {
     pub contact_tests_total: Option<usize>,
     /// Finger-bookmarking snapshots over the run (DOG book).
     pub snapshots_total: Option<usize>,
+    /// Frames the book slept through, doing no solver work (DOG book).
+    pub asleep_frames: Option<usize>,
     /// Fraction of the contact sheet's pixels that show the active page (and any page
     /// model's page), when a sheet was drawn.
     pub page_coverage: Option<f64>,
@@ -379,11 +385,14 @@ fn frame_steps(frame: u32, h: Option<f64>) -> u32 {
     h.map_or(1, |h| clock::steps_in_frame(frame, h))
 }
 
-/// The collision tests and snapshots of the steps of a frame (DOG book).
+/// The collision tests, snapshots and sleep of the steps of a frame (DOG book).
 #[derive(Default)]
 struct FrameWork {
     contact_tests: usize,
     snapshot: bool,
+    /// Steps taken, and those the book slept through.
+    steps: u32,
+    asleep: u32,
 }
 
 impl FrameWork {
@@ -391,6 +400,8 @@ impl FrameWork {
         if let Some(r) = report {
             self.contact_tests += r.contacts.tested;
             self.snapshot |= r.snapshot;
+            self.steps += 1;
+            self.asleep += u32::from(r.asleep);
         }
     }
 
@@ -399,6 +410,9 @@ impl FrameWork {
         FrameRecord {
             contact_tests: record.contact_tests.map(|_| self.contact_tests),
             snapshot: record.snapshot.map(|_| self.snapshot),
+            asleep: record
+                .asleep
+                .map(|_| self.steps > 0 && self.asleep == self.steps),
             ..record
         }
     }
@@ -609,6 +623,7 @@ fn book_record<T: Real>(
             terms: Some(r.census.potentials + r.census.constraints),
             contact_tests: Some(r.contacts.tested),
             snapshot: Some(r.snapshot),
+            asleep: Some(r.asleep),
             ..record.solver(r.solver.status)
         },
         None => record,
@@ -724,6 +739,7 @@ pub(crate) fn summarize(
         page_coverage: None,
         paper_coverage: None,
         snapshots_total: records.iter().map(|r| r.snapshot.map(usize::from)).sum(),
+        asleep_frames: records.iter().map(|r| r.asleep.map(usize::from)).sum(),
         final_pages,
         propagations_total: None,
         tear_lengths: None,

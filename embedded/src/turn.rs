@@ -9,7 +9,7 @@
 //! Each step is timed alone (the inputs before it are timed apart); every step's line is
 //! printed, then the summary and the result checks: one merge, into the left block; the
 //! page counts after it; every node coordinate and velocity finite after every step; no
-//! step that failed to advance the state; the book at rest at the end.
+//! step that failed to advance the state; the book at rest, and asleep, at the end.
 
 use cortex_m_semihosting::hprintln;
 use folio_book::{Book, BookSettings, PageCounts, Phase};
@@ -36,6 +36,8 @@ pub struct TurnReport {
     pub active: Summary,
     /// Steps of the book at rest.
     pub resting: Summary,
+    /// Resting steps the book slept through ([`folio_book::Book::is_asleep`]).
+    pub asleep_steps: u32,
     /// Most instructions of the inputs (grab, drag, release) before one step.
     pub input_max: u64,
     /// Allocation calls made inside `Book::step` (setup allocates; stepping should not).
@@ -115,6 +117,8 @@ pub struct Checks {
     pub stalled_steps: u32,
     /// The phase after the last step.
     pub final_phase: Phase,
+    /// The book was asleep after the last step ([`folio_book::Book::is_asleep`]).
+    pub final_asleep: bool,
 }
 
 impl Checks {
@@ -139,6 +143,7 @@ impl Checks {
             && self.nonfinite_steps == 0
             && self.stalled_steps == 0
             && self.final_phase == Phase::AtRest
+            && self.final_asleep
     }
 }
 
@@ -274,8 +279,10 @@ pub fn run(clock: &Clock, factor: u64, heap: &CountingHeap) -> Result<TurnReport
         nonfinite_steps: 0,
         stalled_steps: 0,
         final_phase: book.phase(),
+        final_asleep: false,
     };
     let (mut input_max, mut step_allocations, mut input_allocations) = (0, 0, 0);
+    let mut asleep_steps = 0;
     for frame in 0..fixture.frames {
         let before_input = heap.stats().allocations;
         let t_input = clock.now();
@@ -293,6 +300,7 @@ pub fn run(clock: &Clock, factor: u64, heap: &CountingHeap) -> Result<TurnReport
         step_allocations += heap.stats().allocations - before_step;
         let report = report.map_err(|_| TurnError::Step { frame })?;
 
+        asleep_steps += u32::from(report.asleep);
         if report.phase == Phase::AtRest {
             resting.push(frame, instructions);
         } else {
@@ -330,12 +338,14 @@ pub fn run(clock: &Clock, factor: u64, heap: &CountingHeap) -> Result<TurnReport
     }
     checks.counts[1] = book.counts();
     checks.final_phase = book.phase();
+    checks.final_asleep = book.is_asleep();
     Ok(TurnReport {
         setup_instructions,
         settle_steps: book.settle_steps(),
         setup_heap,
         active: active.summary(),
         resting: resting.summary(),
+        asleep_steps,
         input_max,
         step_allocations,
         input_allocations,

@@ -22,10 +22,11 @@ use crate::scene::Scene;
 /// linear solves need for that many iterations.
 ///
 /// Frames are in time ([`crate::clock`]): at a time step $h$ a frame takes
-/// $k = \mathrm{round}(\Delta t_{\mathrm{frame}} / h) \ge 1$ steps, so the three counts the
+/// $k = \mathrm{round}(\Delta t_{\mathrm{frame}} / h) \ge 1$ steps, so the four counts the
 /// book keeps in steps, `merge_frames` (slow steps before a released page merges),
-/// `flip_frames` (steps of a bookmarked page's flight) and `history_interval` (steps between
-/// bookmarking snapshots), are its defaults (meant at one step per frame) times $k$: they
+/// `sleep_frames` (quiet steps before a book at rest falls asleep), `flip_frames` (steps of
+/// a bookmarked page's flight) and `history_interval` (steps between bookmarking
+/// snapshots), are its defaults (meant at one step per frame) times $k$: they
 /// keep their meaning in seconds at any $h$.
 #[must_use]
 pub fn book_settings<T: Real>(scene: &Scene) -> BookSettings<T> {
@@ -67,6 +68,7 @@ pub fn book_settings<T: Real>(scene: &Scene) -> BookSettings<T> {
     }
     let k = crate::clock::steps_per_frame(s.solver.time_step.to_f64());
     s.merge_frames = s.merge_frames.saturating_mul(k);
+    s.sleep_frames = s.sleep_frames.saturating_mul(k);
     s.flip_frames = s.flip_frames.saturating_mul(k);
     s.history_interval = s.history_interval.saturating_mul(k);
     s
