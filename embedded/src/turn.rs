@@ -173,7 +173,8 @@ pub enum TurnError {
         /// Frames in the fixture.
         frames: u32,
     },
-    /// The static step-count buffers were taken already ([`StepCounts::take`]).
+    /// The static buffers (step counts, the book) were taken already
+    /// ([`StepCounts::take`], [`open_book`]).
     Buffers,
 }
 
@@ -192,7 +193,7 @@ impl core::fmt::Display for TurnError {
             Self::TooManyFrames { frames } => {
                 write!(f, "the fixture has {frames} frames, too many")
             }
-            Self::Buffers => write!(f, "the step-count buffers were taken already"),
+            Self::Buffers => write!(f, "the static buffers were taken already"),
         }
     }
 }
@@ -242,6 +243,21 @@ pub fn settings() -> BookSettings<Real> {
     settings
 }
 
+/// Builds the book into a static buffer (`.bss`), not on the stack: `Book::new` inlined into
+/// [`run`] gave it a 14,208-byte frame that every step's calls stacked on (high-water
+/// 27,308 bytes on the M4F); built here, out of line, the book's bytes are on the stack only
+/// while it is built.
+///
+/// # Errors
+/// [`TurnError::Setup`] when `Book::new` refuses the settings, [`TurnError::Buffers`] when
+/// the static was taken already.
+#[inline(never)]
+fn open_book() -> Result<&'static mut Book<Real>, TurnError> {
+    let slot = cortex_m::singleton!(: Option<Book<Real>> = None).ok_or(TurnError::Buffers)?;
+    let book = Book::<Real>::new(settings()).map_err(|_| TurnError::Setup)?;
+    Ok(slot.insert(book))
+}
+
 /// Plays the page turn, printing one line per step; `factor` is instructions per SysTick
 /// tick ([`crate::clock::Calibration::factor`]).
 ///
@@ -257,7 +273,7 @@ pub fn run(clock: &Clock, factor: u64, heap: &CountingHeap) -> Result<TurnReport
     }
 
     let t0 = clock.now();
-    let mut book = Book::<Real>::new(settings()).map_err(|_| TurnError::Setup)?;
+    let book = open_book()?;
     let setup_instructions = (clock.now() - t0) * factor;
     let setup_heap = heap.stats().current;
     hprintln!(
@@ -305,12 +321,12 @@ pub fn run(clock: &Clock, factor: u64, heap: &CountingHeap) -> Result<TurnReport
             resting.push(frame, instructions);
         } else {
             active.push(frame, instructions);
-            accuracy.record(&book);
+            accuracy.record(book);
         }
         if !report.solver.status.advanced() {
             checks.stalled_steps += 1;
         }
-        if !all_finite(&book) {
+        if !all_finite(book) {
             checks.nonfinite_steps += 1;
         }
         if let Some(side) = report.merged {
