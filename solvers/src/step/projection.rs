@@ -31,7 +31,8 @@ pub struct Correction<T> {
     pub before: T,
     /// $\lVert C(x)\rVert_\infty$ after the last accepted one.
     pub after: T,
-    /// Numeric factorizations of the normal equations (0 while the held factor serves).
+    /// Numeric factorizations of the normal equations (one per solve that had work to do:
+    /// every solve factorizes, [`crate::normal_equations::NormalEquations::solve`]).
     pub factorizations: u32,
     /// Triangular solves with the normal equations' factor.
     pub solves: u32,
@@ -98,9 +99,10 @@ impl<T: Real> Solver<T> {
     /// $W_i = (m_i/h^2)(I + (w_{pin} - 1) n n^\top)$, so that they slide along the surface
     /// ([`Pins`]). This is the fast projection of Goldenthal et al. 2007. Since $W$ is diagonal,
     /// each iteration solves the normal equations $J W^{-1} J^\top\mu = C$ instead
-    /// ([`crate::normal_equations::NormalEquations`]: constraint rows only, analysed once per topology, its factor
-    /// held across iterations and calls and refactorized only when refinement with it falls
-    /// short), and allocates nothing. The one-Newton-step
+    /// ([`crate::normal_equations::NormalEquations`]: constraint rows only, analysed once per
+    /// topology, factorized for every solve, since $J$ and $W$ change with each iteration and
+    /// release round; a factor held across them served one iteration in 10 to 16 and cost
+    /// more than it saved, f85c306), and allocates nothing. The one-Newton-step
     /// default leaves $C = O(\lVert\Delta x\rVert^2)$ behind, and a collision push of depth
     /// $d$ leaves $C = O(d/\ell)$ (module docs); this removes both. Iterates until
     /// $\lVert C\rVert_\infty \le$ `tolerance` or `max_steps` iterations; each iteration
@@ -194,7 +196,7 @@ impl<T: Real> Workspace<T> {
     /// $\lVert C\rVert_\infty$ is `residual`: evaluates $J(x)$, sets
     /// $W = M/h^2$ (times $w_{pin}$ on held nodes, [`Pins`]), solves the normal equations
     /// $J W^{-1} J^\top \mu = C$ to a linear residual of a quarter of `tolerance`
-    /// ([`crate::normal_equations::NormalEquations`], with its held factor when that suffices), takes
+    /// ([`crate::normal_equations::NormalEquations`], factorized anew), takes
     /// $\delta = -W^{-1} J^\top\mu$, and halves the step until $\lVert C\rVert_\infty$ falls.
     /// Returns the new $\lVert C\rVert_\infty$ with the point in `trial`, or `None` when the
     /// iteration cannot lower it.
