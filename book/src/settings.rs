@@ -216,8 +216,17 @@ pub struct BookSettings<T: Real> {
     /// by less than the rounding noise of its coordinates ($\approx \varepsilon W$, $W$ the
     /// page width) stays: the spring's adhesion $k\thinspace \varepsilon W$ must be small next to the
     /// node's weight $m g$, i.e. $s \ll g / (\varepsilon W)$. Default $10^6$ in `f64`
-    /// (adhesion $\approx 10^{-9}\thinspace m g$) and $4 \cdot 10^4$ in `f32` ($\approx 0.006\thinspace m g$;
-    /// at $10^6$ the f32 page sticks to its block and the page turn fails).
+    /// (adhesion $\approx 10^{-9}\thinspace m g$) and $10^5$ in `f32` ($\approx 0.015\thinspace m g$;
+    /// at $10^6$ the f32 page sticks to its block and the page turn fails). It was
+    /// $4 \cdot 10^4$ in `f32` while the `f32` factor was equilibrated
+    /// (`folio_solvers::Settings::equilibrate`); unscaled, that soft a contact let a page
+    /// pressed over the spine sink into the gutter, the inertia correction shifted the primal
+    /// block by up to 66 times a page node's $m/h^2$, and the page stood still while the
+    /// finger moved on: `capi/tests/page_turn.rs`'s drag of 100 steps fell back to the right
+    /// (the held node stalled at $x = -0.3$). At $10^5$ the same drag over 80 to 160 steps
+    /// lands left every time (the held node at $x \approx -9$ to $-10$ at the release, as in
+    /// `f64`), and the recorded page turn takes 193 KKT factorizations instead of 256 with 4
+    /// shifted steps instead of 25, its mean stretch 0.27 % instead of 0.32 %.
     pub contact_stiffness: T,
     /// Coulomb friction coefficient $\mu$ of the active page on the blocks (dimensionless;
     /// [`crate::friction`]): each contact cuts a page node's tangential speed by $\mu$ times
@@ -285,7 +294,7 @@ impl<T: Real> Default for BookSettings<T> {
             contact_stiffness: T::from_f64(if T::EPSILON.to_f64() < 1e-10 {
                 1e6
             } else {
-                4e4
+                1e5
             }),
             collision_rounds: 3,
             settle_steps: 20_000,

@@ -52,12 +52,18 @@ pub struct Settings<T: Real> {
     /// [`Ordering::AmdQuasiDefinite`] in `f32` (see [`Ordering`] for the measurements).
     pub ordering: Ordering,
     /// Factorize the Ruiz-equilibrated KKT matrix ([`crate::Kkt::set_equilibration`]).
-    /// Default: on in `f32`, off in `f64`. The book's KKT spans masses over $h^2$, isometry
-    /// weights of thousands and contact springs; in `f32` its unscaled factor left solves
-    /// with relative residuals up to $10^{20}$ on the page turn, and the DOG residual at
-    /// 1.5e-3. Equilibrated: worst residual 1.2e-4, DOG residual 3.3e-4, the merge at frame
-    /// 183 (f64: 231), for about 16 % more time. In `f64` refinement already reaches 1e-8 and the
-    /// four scaling passes would cost 25 %.
+    /// Default off. It was on in `f32` while `f32` factorized in AMD's or the delayed
+    /// order without a dual shift: unscaled, that factor left solves with relative residuals
+    /// up to $10^{20}$ on the book's page turn. Under [`Ordering::AmdQuasiDefinite`], the
+    /// `f32` default since, the shifted factor is stable unscaled, and scaling it as well
+    /// biased the solves the refinement accepts (to $\sqrt\varepsilon$ relative, the inertia
+    /// rows dominating the norm): the default book's blocks settled 1.1e-2 page units from
+    /// their `f64` rest, against 5e-5 unscaled (and 5e-5 equilibrated in plain AMD's order).
+    /// Measured on the book's `f32` page turn (x86, the book's other defaults): worst KKT
+    /// relative residual 3.4e-3 scaled, 3.4e-4 unscaled; normal-equation factorizations
+    /// 645 and 368; KKT factorizations 256 and 193; the same DOG residual (9.9e-5, 9.6e-5),
+    /// both merged left. In `f64` refinement reaches 1e-8 either way and the four scaling
+    /// passes would cost 25 %.
     pub equilibrate: bool,
     /// A pivot with $s_k d_k \le$ `pivot_epsilon` $\cdot$ scale is regularized (scale: the
     /// largest primal diagonal). Finite, $\ge 0$. Default $1000\thinspace\varepsilon$.
@@ -163,7 +169,7 @@ impl<T: Real> Default for Settings<T> {
             } else {
                 Ordering::AmdQuasiDefinite
             },
-            equilibrate: T::EPSILON.to_f64() > 1e-10,
+            equilibrate: false,
             pivot_epsilon: T::from_f64(1000.0) * T::EPSILON,
             regularization: sqrt_eps,
             refinement_steps: 10,

@@ -131,8 +131,9 @@ fn page_turn_runs_in_f32() {
     );
     assert_eq!(run.nonfinite_frames, 0);
     assert_eq!(run.stalled_steps, 0);
-    // Without equilibration the f32 factor left solves with relative residuals of 1e20 and
-    // a DOG residual of 1.5e-3 (`Settings::equilibrate`); equilibrated: 1.2e-4 and 3.3e-4.
+    // In the delayed order without a dual shift, the unscaled f32 factor left solves with
+    // relative residuals of 1e20 and a DOG residual of 1.5e-3 (`Settings::equilibrate`);
+    // the quasi-definite order's, unscaled: 3.4e-4 and 9.6e-5.
     assert!(
         run.linear_residual_max < 1e-2,
         "{}",
