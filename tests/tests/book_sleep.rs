@@ -14,7 +14,7 @@ fn block_speed<T: Real>(book: &Book<T>) -> f64 {
     book.state().v[..po]
         .iter()
         .map(|v| folio_kernels::math::length::<T>(*v).to_f64())
-        .fold(0.0, f64::max)
+        .fold(0.0, folio_tests::worst)
 }
 
 /// What a run of the page-turn fixture did, frame by frame.

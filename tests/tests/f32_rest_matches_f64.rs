@@ -28,7 +28,7 @@ fn the_f32_book_settles_where_the_f64_book_does() {
         .iter()
         .zip(&reference)
         .flat_map(|(p, q)| (0..3).map(move |k| (p[k] - q[k]).abs()))
-        .fold(0.0, f64::max);
+        .fold(0.0, folio_tests::worst);
     eprintln!("f32 rest vs f64 rest: {gap:.1e} page units");
     // The settling stops at a step that moves no node by more than 1e-6 in f32; the
     // contact springs sink a resting node by g/s: 1e-4 in f32, 1e-5 in f64.
