@@ -502,8 +502,8 @@ FolioStatus folio_book_settings_default(struct FolioBookSettings *out);
 
 /**
  * Creates a book from `settings` and writes its handle to `*out`. The book starts at rest,
- * its blocks settled into their rest shape (this runs up to a few thousand block-only steps,
- * typically milliseconds).
+ * its blocks settled into their rest shape (tens of block-only steps, a few hundred for
+ * a book of two pages; typically a millisecond).
  *
  * Returns `FOLIO_STATUS_NULL_POINTER` for a NULL argument, `FOLIO_STATUS_INVALID_ARGUMENT`
  * for out-of-range settings (the message names the field), `FOLIO_STATUS_BOOK_ERROR` if the
