@@ -86,6 +86,19 @@ fn settled<T: Real>(moved: T, previous: T, tolerance: T) -> bool {
     moved * r <= tolerance * (T::ONE - r)
 }
 
+/// The settling's next pseudo time step ([`Book::new`]) after a step at `h`: doubled, up
+/// to `longest`, after a clean step (advanced with one factorization); halved, down to
+/// the scene's `base`, after one that did not advance or needed the inertia correction.
+fn next_pseudo_step<T: Real>(h: T, clean: bool, base: T, longest: T) -> T {
+    if clean {
+        if h + h < longest { h + h } else { longest }
+    } else if h * T::HALF > base {
+        h * T::HALF
+    } else {
+        base
+    }
+}
+
 /// Pages in each part of the book.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PageCounts {
@@ -326,18 +339,17 @@ impl<T: Real> Book<T> {
     /// steps from rest, $v = 0$, so that each is the proximal step
     /// $x_{k+1} = \arg\min_x E(x) + \tfrac{1}{2h_k^2}\lVert x - x_k\rVert_M^2$ on the
     /// potential energy, under the constraints and contacts, with the pseudo time step
-    /// $h_k$ doubling after each step that advanced with one factorization, from the
-    /// scene's $h$ up to `settle_stretch` $\cdot h$, and halving (down to $h$) after one
-    /// that did not advance or needed the inertia correction. As
-    /// $h_k$ grows the step tends to Newton's on the equilibrium $\nabla E = 0$, so the
-    /// blocks reach the rest that stepping at $h$ reaches, in far fewer steps (no inertia
-    /// to ring down). At the first clean step (advanced, one factorization) that is
-    /// [`settled`] the dynamics at $h$ take over, and the settling stops at their first
-    /// step that moves no node by more than `settle_tolerance` (or after `settle_steps`). Once the largest move has been under
-    /// $\sqrt{\text{settle\_tolerance}}$ and has not fallen to a new low for
-    /// [`STALLED_SETTLE_STEPS`] steps, the settling goes on as the dynamics at $h$ (the
-    /// bound keeps a long fall, whose moves grow before they shrink, in the continuation). With `settle_stretch` 1 the blocks
-    /// step their dynamics at $h$ instead (velocities kept), until they are as still.
+    /// $h_k$ from [`next_pseudo_step`]. As $h_k$ grows the step tends to Newton's on the
+    /// equilibrium $\nabla E = 0$, so the blocks reach the rest that stepping at $h$
+    /// reaches, in far fewer steps (no inertia to ring down).
+    ///
+    /// At the first clean step (advanced, one factorization) that is [`settled`], the
+    /// dynamics at $h$ take over, and the settling stops at their first step that moves no
+    /// node by more than `settle_tolerance` (or after `settle_steps`). They take over too
+    /// once the largest move has been under $\sqrt{\text{settle\_tolerance}}$ and has not
+    /// fallen to a new low for [`STALLED_SETTLE_STEPS`] steps (the bound keeps a long fall,
+    /// whose moves grow before they shrink, in the continuation). With `settle_stretch` 1
+    /// the blocks step their dynamics at $h$ throughout (velocities kept).
     fn settle(&mut self) -> Result<(), BookError> {
         let base = self.settings.solver;
         let mut h = base.time_step;
@@ -383,32 +395,23 @@ impl<T: Real> Book<T> {
                 }
                 continue;
             }
-            if clean && settled(moved, previous, tolerance) {
-                // Rest is checked at the scene's step: the dynamics at h finish.
-                from_rest = false;
-                h = base.time_step;
-                continue;
-            }
+            let settled_now = clean && settled(moved, previous, tolerance);
             previous = moved;
             (best, since_best) = if k == 0 || moved < best {
                 (moved, 0)
             } else {
                 (best, since_best + 1)
             };
-            if since_best >= STALLED_SETTLE_STEPS && best * best <= tolerance {
-                // Stalled (contacts jitter at a floor the pseudo step amplifies): the
-                // dynamics at h finish from here.
+            let stalled = since_best >= STALLED_SETTLE_STEPS && best * best <= tolerance;
+            if settled_now || stalled {
+                // The dynamics at h finish from here: rest is checked at the scene's step,
+                // and a stalled continuation (contacts jittering at a floor the pseudo step
+                // amplifies) gets there too.
                 from_rest = false;
                 h = base.time_step;
                 continue;
             }
-            h = if clean {
-                if h + h < longest { h + h } else { longest }
-            } else if h * T::HALF > base.time_step {
-                h * T::HALF
-            } else {
-                base.time_step
-            };
+            h = next_pseudo_step(h, clean, base.time_step, longest);
         }
         self.settings.solver = base;
         self.rest_solver.set_settings(base)?;
