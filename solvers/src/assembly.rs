@@ -4,8 +4,10 @@
 use folio_kernels::fused::mul_add;
 use folio_kernels::{Constraint, Mat3Ops, Potential, Real, Vec3Ops};
 
+use crate::index::Index;
 use crate::model::{ConstraintSet, PotentialSet, TermVisitor};
 use crate::pattern::{Family, KktPattern, NONE};
+use crate::slots::{Slots, slot};
 
 /// What an evaluation computes beyond $V(x)$ and $C(x)$.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -56,8 +58,9 @@ impl<T: Real> Assemble<'_, T> {
     }
 
     /// Adds `weight * blocks` through the Hessian slots of term `t` of `f` (their layout in
-    /// [`Family::hessian_per_term`]). Each slot receives the same terms in the same order
-    /// either way: a term adds to a slot once, except for a repeated dof (full layout).
+    /// [`Family::hessian_per_term`]), in the map's width. Each slot receives the same terms
+    /// in the same order either way: a term adds to a slot once, except for a repeated dof
+    /// (full layout).
     fn scatter_hessian<const N: usize>(
         &mut self,
         f: &Family,
@@ -65,9 +68,26 @@ impl<T: Real> Assemble<'_, T> {
         blocks: &[[T::Mat3; N]; N],
         weight: T,
     ) {
+        let at = f.hessian_offset + t * f.hessian_per_term();
+        match &self.pattern.hessian_slots {
+            Slots::Narrow(map) => self.scatter_blocks(f, t, &map[at..], blocks, weight),
+            Slots::Wide(map) => self.scatter_blocks(f, t, &map[at..], blocks, weight),
+        }
+    }
+
+    /// [`Assemble::scatter_hessian`] through `slots`, term `t`'s part of the map. Generic
+    /// in the stencil's size, so that its loops unroll: written for any size, the M4F's
+    /// median active step took 0.6 % more instructions (for 8 KB less flash).
+    fn scatter_blocks<I: Index, const N: usize>(
+        &mut self,
+        f: &Family,
+        t: usize,
+        slots: &[I],
+        blocks: &[[T::Mat3; N]; N],
+        weight: T,
+    ) {
         let stride = 3 * N;
         let entry = |p: usize, q: usize| blocks[p / 3][q / 3].entry(p % 3, q % 3);
-        let slots = &self.pattern.hessian_slots[f.hessian_offset + t * f.hessian_per_term()..];
         if f.hessian_upper {
             let dofs = &self.pattern.local_dofs[f.dof_offset + t * stride..][..stride];
             let mut at = 0;
@@ -75,14 +95,13 @@ impl<T: Real> Assemble<'_, T> {
                 for q in p..stride {
                     let s = slots[at];
                     at += 1;
-                    if s != NONE {
+                    if let Some(s) = slot(s) {
                         // The stored entry is (p, q) if dof p <= dof q, else its mirror.
                         let v = if dofs[p] <= dofs[q] {
                             entry(p, q)
                         } else {
                             entry(q, p)
                         };
-                        let s = s as usize;
                         self.values[s] = mul_add(self.values[s], weight, v);
                     }
                 }
@@ -90,12 +109,39 @@ impl<T: Real> Assemble<'_, T> {
         } else {
             for p in 0..stride {
                 for q in 0..stride {
-                    let s = slots[p * stride + q];
-                    if s != NONE {
-                        let s = s as usize;
+                    if let Some(s) = slot(slots[p * stride + q]) {
                         self.values[s] = mul_add(self.values[s], weight, entry(p, q));
                     }
                 }
+            }
+        }
+    }
+
+    /// Adds the Jacobian rows `jac` of term `t` of `f` through the Jacobian slots (row by
+    /// row, node by node, axis by axis), skipping the marks of no slot. Written for any
+    /// stencil ([`add_vectors`]): unrolled for each, the maps in two widths took 5.8 KB of
+    /// the M4F's flash.
+    fn scatter_jacobian<const R: usize, const N: usize>(
+        &mut self,
+        f: &Family,
+        t: usize,
+        jac: &[[T::Vec3; N]; R],
+    ) {
+        let at = f.jacobian_offset + t * 3 * N * R;
+        let rows = jac.as_flattened();
+        match &self.pattern.jacobian_slots {
+            Slots::Narrow(map) => add_vectors(self.values, &map[at..], rows),
+            Slots::Wide(map) => add_vectors(self.values, &map[at..], rows),
+        }
+    }
+}
+
+/// Adds the coordinates of `vectors` to `values` through `slots`, three slots per vector.
+fn add_vectors<T: Real, I: Index>(values: &mut [T], slots: &[I], vectors: &[T::Vec3]) {
+    for (k, v) in vectors.iter().enumerate() {
+        for i in 0..3 {
+            if let Some(s) = slot(slots[3 * k + i]) {
+                values[s] += v.get(i);
             }
         }
     }
@@ -156,17 +202,7 @@ impl<T: Real> TermVisitor<T> for Assemble<'_, T> {
                 continue;
             }
             let jac = term.kernel.jacobian(&xs);
-            let slots = &self.pattern.jacobian_slots[f.jacobian_offset + t * 3 * N * R..];
-            for (r, row) in jac.iter().enumerate() {
-                for (a, ja) in row.iter().enumerate() {
-                    for i in 0..3 {
-                        let s = slots[r * 3 * N + 3 * a + i];
-                        if s != NONE {
-                            self.values[s as usize] += ja.get(i);
-                        }
-                    }
-                }
-            }
+            self.scatter_jacobian::<R, N>(&f, t, &jac);
             if self.derivatives == Derivatives::Second && f.has_hessian {
                 let mut lambda = [T::ZERO; R];
                 lambda.copy_from_slice(&self.lambda[row0..row0 + R]);

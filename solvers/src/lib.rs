@@ -47,6 +47,7 @@ pub mod report;
 pub mod ring;
 pub mod room;
 pub mod settings;
+mod slots;
 pub mod step;
 pub mod symbolic;
 pub mod vector;

@@ -17,6 +17,7 @@ use folio_kernels::{Constraint, Potential, Real};
 use crate::error::SolverError;
 use crate::model::{ConstraintSet, Model, PotentialSet, TermVisitor};
 use crate::room::{Room, refill, scaled};
+use crate::slots::Slots;
 
 /// Marks an eliminated coordinate or a dropped (lower-triangle) entry in the maps.
 pub const NONE: u32 = u32::MAX;
@@ -88,8 +89,10 @@ pub struct KktPattern {
     pub(crate) row_idx: Vec<u32>,
     pub(crate) families: Vec<Family>,
     pub(crate) local_dofs: Vec<u32>,
-    pub(crate) hessian_slots: Vec<u32>,
-    pub(crate) jacobian_slots: Vec<u32>,
+    /// The Hessian scatter map ([`Slots`]: `u16` for fewer than 65,535 stored entries).
+    pub(crate) hessian_slots: Slots,
+    /// The Jacobian scatter map, in the same width.
+    pub(crate) jacobian_slots: Slots,
     /// Whether the constraint Hessian blocks are part of the pattern.
     pub(crate) with_constraint_hessian: bool,
 }
@@ -252,23 +255,26 @@ impl KktPattern {
             &mut self.col_ptr,
             &mut self.row_idx,
         )?;
-        self.jacobian_slots.clear();
-        self.jacobian_slots.reserve(jacobian_len);
+        self.jacobian_slots.clear_for(self.row_idx.len());
+        self.jacobian_slots.room_for(jacobian_len);
         self.fill_slots();
         Ok(keys)
     }
 
     /// Every array of the pattern, for what is done to all of them alike.
-    fn arrays_mut(&mut self) -> [&mut Vec<u32>; 7] {
+    fn arrays_mut(&mut self) -> [&mut Vec<u32>; 5] {
         [
             &mut self.dof_of,
             &mut self.coordinate_of,
             &mut self.col_ptr,
             &mut self.row_idx,
             &mut self.local_dofs,
-            &mut self.hessian_slots,
-            &mut self.jacobian_slots,
         ]
+    }
+
+    /// The scatter maps, for what is done to both alike.
+    fn maps_mut(&mut self) -> [&mut Slots; 2] {
+        [&mut self.hessian_slots, &mut self.jacobian_slots]
     }
 
     /// Frees the room of the arrays beyond their lengths (a pattern built once).
@@ -276,12 +282,18 @@ impl KktPattern {
         for v in self.arrays_mut() {
             v.shrink_to_fit();
         }
+        for m in self.maps_mut() {
+            m.shrink_to_fit();
+        }
     }
 
     /// Room for a pattern `scale` times this one's size (every array in proportion).
     pub fn reserve_scaled(&mut self, scale: f64) {
         for v in self.arrays_mut() {
             v.room_for(scaled(v.len(), scale));
+        }
+        for m in self.maps_mut() {
+            m.reserve_scaled(scale);
         }
     }
 
@@ -311,13 +323,14 @@ impl KktPattern {
     /// layout ([`Family::hessian_per_term`]).
     pub(crate) fn fill_maps(&mut self) {
         let mut families = core::mem::take(&mut self.families);
-        self.hessian_slots.clear();
-        self.jacobian_slots.clear();
+        let nnz = self.row_idx.len();
+        self.hessian_slots.clear_for(nnz);
+        self.jacobian_slots.clear_for(nnz);
         let hessian_len = families
             .iter()
             .map(|f| f.terms * f.hessian_per_term())
             .sum();
-        self.hessian_slots.reserve_exact(hessian_len);
+        self.hessian_slots.room_for(hessian_len);
         for f in &mut families {
             f.hessian_offset = self.hessian_slots.len();
             f.jacobian_offset = self.jacobian_slots.len();
@@ -636,7 +649,7 @@ mod tests {
                             if b < a {
                                 continue;
                             }
-                            let s = p.hessian_slots[row + b - a];
+                            let s = p.hessian_slots.get(row + b - a);
                             if da == NONE || db == NONE {
                                 assert_eq!(s, NONE);
                             } else {
@@ -645,7 +658,9 @@ mod tests {
                             }
                         }
                         for r in 0..f.rows {
-                            let s = p.jacobian_slots[f.jacobian_offset + 6 * (t * f.rows + r) + a];
+                            let s = p
+                                .jacobian_slots
+                                .get(f.jacobian_offset + 6 * (t * f.rows + r) + a);
                             let col = (p.dofs + f.first_row + t * f.rows + r) as u32;
                             if da == NONE {
                                 assert_eq!(s, NONE);
