@@ -56,7 +56,7 @@ pub use layout::{BlockSide, BookLayout, BookParams, LayoutError};
 pub use model::{BookTerms, Family, NodeMap};
 pub use paper::{BookUnits, Paper};
 pub use script::{Action, Event, Script, ScriptError};
-pub use settings::{BookSettings, WEIGHT_RANGES, Weights};
+pub use settings::{BookSettings, MICROCONTROLLER_GRID, WEIGHT_RANGES, Weights};
 pub use simulation::{
     Book, BookStepReport, BookmarkOutcome, DragOutcome, GrabOutcome, InputOutcome, PageCounts,
     Phase,

@@ -335,6 +335,33 @@ impl<T: Real> Default for BookSettings<T> {
     }
 }
 
+/// The page grid of [`BookSettings::microcontroller`] (quads across, along): the finest that
+/// keeps the default page turn's median active step under 1.5 M instructions on the
+/// Cortex-M4F in `f32` (issue 40's `page-turn-mcu`). Measured with the firmware
+/// (`embedded/`, QEMU `-icount`; median / p99 instructions per active step, heap peak):
+/// 8 x 11 (the default) 18.9 M / 43.7 M, 683 KB; 6 x 8 8.0 M / 12.7 M, 388 KB; 5 x 7
+/// 4.9 M / 9.2 M, 298 KB; 4 x 6 3.0 M / 5.9 M, 225 KB; 4 x 4 2.0 M / 3.4 M, 172 KB;
+/// 3 x 5 1.45 M / 3.4 M, 167 KB; 3 x 4 1.18 M / 2.7 M, 148 KB; 3 x 3 0.98 M / 1.9 M,
+/// 129 KB. Every one of them turned the page onto the left block within the bounds.
+/// Its cells, 4 x 4.1 page units, are about square, as the default's are.
+pub const MICROCONTROLLER_GRID: [usize; 2] = [3, 4];
+
+impl<T: Real> BookSettings<T> {
+    /// The book for the smallest parts: the default book on the coarse page grid
+    /// [`MICROCONTROLLER_GRID`] (the built-in scene `page-turn-mcu` runs it in `f32`). What
+    /// it costs in accuracy is in the accuracy atlas (`docs/atlas/page-turn/atlas.md`, the
+    /// variant `dog 3x4, f32`, against the same reference as the default's).
+    #[must_use]
+    pub fn microcontroller() -> Self {
+        let [across, along] = MICROCONTROLLER_GRID;
+        Self {
+            quads_across: across,
+            quads_along: along,
+            ..Self::default()
+        }
+    }
+}
+
 impl<T: Real> BookSettings<T> {
     /// Sets the Newton iterations of a step with the linear solves' refinement they need:
     /// the book's $\sqrt{\varepsilon}$ for one iteration (see `solver`), the solver's

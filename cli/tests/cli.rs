@@ -5,8 +5,9 @@
 
 use std::path::{Path, PathBuf};
 
-const SCENES: [&str; 9] = [
+const SCENES: [&str; 10] = [
     "page-turn",
+    "page-turn-mcu",
     "peek",
     "bookmark-flip",
     "stack",

@@ -26,6 +26,8 @@ use crate::stats::{StepCounts, Summary};
 /// What the run measured (instructions are SysTick ticks times the calibrated factor).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TurnReport {
+    /// The page grid the book ran (quads across, along).
+    pub grid: [usize; 2],
     /// `Book::new`: instructions, including the settling of the blocks.
     pub setup_instructions: u64,
     /// Steps `Book::new` took to settle the blocks.
@@ -231,14 +233,19 @@ fn all_finite(book: &Book<Real>) -> bool {
         .all(|p| p.x().is_finite() && p.y().is_finite() && p.z().is_finite())
 }
 
-/// The book the firmware plays: `BookSettings::default()` with the solver's diagnostics
-/// off. `check_final_residual` evaluates the gradient and the Jacobian once more after the
+/// The book the firmware plays: `BookSettings::default()` (with the `mcu` feature,
+/// [`BookSettings::microcontroller`], the built-in scene `page-turn-mcu`) with the solver's
+/// diagnostics off. `check_final_residual` evaluates the gradient and the Jacobian once more after the
 /// last Newton iteration only so that the status can say `Converged`; it changes nothing in
 /// the state, and the firmware reads no such status: it checks its results itself (module
 /// docs). Measured with it on: 1.1 M instructions of a median active M4F step (issue 40).
 #[must_use]
 pub fn settings() -> BookSettings<Real> {
-    let mut settings = BookSettings::default();
+    let mut settings = if cfg!(feature = "mcu") {
+        BookSettings::microcontroller()
+    } else {
+        BookSettings::default()
+    };
     settings.solver.check_final_residual = false;
     settings
 }
@@ -277,7 +284,9 @@ pub fn run(clock: &Clock, factor: u64, heap: &CountingHeap) -> Result<TurnReport
     let setup_instructions = (clock.now() - t0) * factor;
     let setup_heap = heap.stats().current;
     hprintln!(
-        "book: built in {} instructions ({} settling steps), {} heap bytes held",
+        "book: {} x {} page grid, built in {} instructions ({} settling steps), {} heap bytes held",
+        book.settings().quads_across,
+        book.settings().quads_along,
         setup_instructions,
         book.settle_steps(),
         setup_heap
@@ -355,7 +364,9 @@ pub fn run(clock: &Clock, factor: u64, heap: &CountingHeap) -> Result<TurnReport
     checks.counts[1] = book.counts();
     checks.final_phase = book.phase();
     checks.final_asleep = book.is_asleep();
+    let settings = book.settings();
     Ok(TurnReport {
+        grid: [settings.quads_across, settings.quads_along],
         setup_instructions,
         settle_steps: book.settle_steps(),
         setup_heap,

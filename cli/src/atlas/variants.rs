@@ -216,6 +216,12 @@ pub fn declared(model: &str) -> Vec<Variant> {
             ..none
         }),
         dog(Knobs { f32: true, ..none }),
+        // The microcontroller book (`page-turn-mcu`): f32 on the coarse grid.
+        dog(Knobs {
+            grid: Some(folio_book::MICROCONTROLLER_GRID.map(|q| q as i64)),
+            f32: true,
+            ..none
+        }),
         dog(Knobs {
             steps: Some(2),
             ..none
