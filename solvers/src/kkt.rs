@@ -277,7 +277,23 @@ impl<T: Real> Kkt<T> {
     /// $s_k d_k \le \epsilon_{rel} \sigma_k$ becomes $s_k \delta_{rel} \sigma_k$. The natural
     /// size $\sigma_k$ of a primal pivot is $P$, the largest primal diagonal
     /// ([`Kkt::primal_scale`]); that of constraint row $c$ is the size of its Schur complement
-    /// $J_c H^{-1} J_c^\top \approx \lVert J_c\rVert_2^2 / P$.
+    /// $J_c H^{-1} J_c^\top$, estimated as $\lVert J_c\rVert_2^2 / P$ on $K$ and, when
+    /// equilibrated ([`Kkt::set_equilibration`]), as $\sum_i J_{ci}^2 / h_{ii}$ on $DKD$
+    /// ($H$'s diagonal, $P$ for an entry that is not positive).
+    ///
+    /// Ruiz shrinks the diagonal of the unknowns a large Jacobian row couples to far below
+    /// $P$, so that on $DKD$ the global estimate falls short of the Schur complement by as
+    /// much: a fuzzed constraint row of Jacobian entries near $10^6$ and compliance
+    /// $10^{-6}$, eliminated before its unknowns, kept a pivot of $-10^{-12}$ against a
+    /// threshold of $2 \cdot 10^{-13}$, the next pivot grew to $10^{12}$ and the refined
+    /// solve stalled at a relative residual of $6 \cdot 10^{-5}$ (backward error
+    /// $2 \cdot 10^{-7}$, 100 times the bound; unscaled, the pivot is regularized and one
+    /// refinement step reaches $4 \cdot 10^{-14}$). Taking $K$'s thresholds over to $DKD$
+    /// instead fails the other way: on rows scaled over six decades in `f32` they
+    /// regularized pivots that equilibration had made sound (residual $4.6 \cdot 10^{-2}$
+    /// against $10^{-3}$, `tests/tests/solver_kkt.rs`). Unscaled, $P$ stays the estimate:
+    /// the per-diagonal one would move every structurally zero constraint pivot
+    /// ($-\delta_{rel}\sigma_c$) and the `f32` dual shift of the default book.
     pub fn factorize(&mut self, epsilon_rel: T, delta_rel: T) -> FactorOutcome {
         self.factorizations += 1;
         let p = &self.pattern;
@@ -292,6 +308,13 @@ impl<T: Real> Kkt<T> {
             None => values[slot],
         };
         let primal = primal_scale(p, |k| scaled(p.diagonal_slot(k), k, k));
+        // Equilibrated: Jacobian entry `v` of row `r` over that unknown's diagonal (`P`
+        // when it is not positive), a term of the Schur complement's estimate.
+        let jacobi = |v: T, r: usize| {
+            let h = scaled(p.diagonal_slot(r), r, r);
+            v * v / if h > T::ZERO { h } else { primal }
+        };
+        let equilibrated = scaling.is_some();
         for (new, &old) in self.symbolic.perm.iter().enumerate() {
             let old = old as usize;
             self.pivot_scale[new] = if old < p.dofs {
@@ -299,13 +322,14 @@ impl<T: Real> Kkt<T> {
             } else {
                 let column = p.col_ptr[old] as usize..p.diagonal_slot(old);
                 let sum = column.fold(T::ZERO, |acc, slot| {
-                    let v = scaled(slot, p.row_idx[slot] as usize, old);
-                    acc + v * v
+                    let r = p.row_idx[slot] as usize;
+                    let v = scaled(slot, r, old);
+                    acc + if equilibrated { jacobi(v, r) } else { v * v }
                 });
-                if sum > T::ZERO {
-                    sum / primal
-                } else {
-                    T::ONE / primal
+                match (sum > T::ZERO, equilibrated) {
+                    (false, _) => T::ONE / primal,
+                    (true, true) => sum,
+                    (true, false) => sum / primal,
                 }
             };
         }

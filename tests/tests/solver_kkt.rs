@@ -262,3 +262,64 @@ fn refinement_keeps_its_best_iterate() {
         assert!(residual[1] <= residual[0], "{name}: {residual:?}");
     }
 }
+
+/// A constraint row of Jacobian entries near $10^6$ and compliance $10^{-6}$ that the order
+/// eliminates before its unknowns (found by the `ldlt` fuzz target; also in its corpus,
+/// `fuzz/corpus/ldlt/equilibrated-compliant-row`): equilibrated, its pivot is regularized as
+/// it is unscaled (`Kkt::factorize`: the Schur complement estimated with each unknown's own
+/// diagonal), and the refined solve reaches the refinement tolerance in both. Before, the
+/// equilibrated factor kept a pivot of -1e-12, the next grew to 1e12 and the refinement
+/// stalled at a relative residual of 6e-5.
+#[test]
+fn an_equilibrated_compliant_row_is_regularized_as_the_unscaled_one_is() {
+    let (j2, j3, c) = (
+        992_021.176_379_373,
+        338_385.515_342_822_9,
+        -1.003_378_673_744_169_3e-6,
+    );
+    #[rustfmt::skip]
+    let k = [
+        104.899_932_411_251_68, -1.817_458_104_128_866_2e-4, 5.940_397_661_139_219, -0.254_627_462_140_768_15, -3.250_311_059_726_977e-3, 0.0,
+        -1.817_458_104_128_866_2e-4, 101.221_395_746_205_67, -2.519_310_854_510_844, -4.279_147_828_598_103_4e-4, 0.0, 0.0,
+        5.940_397_661_139_219, -2.519_310_854_510_844, 107.161_183_746_751_62, 0.0, 0.0, j2,
+        -0.254_627_462_140_768_15, -4.279_147_828_598_103_4e-4, 0.0, 98.956_530_608_025_18, 0.0, j3,
+        -3.250_311_059_726_977e-3, 0.0, 0.0, 0.0, 95.592_139_733_310_87, 0.0,
+        0.0, 0.0, j2, j3, 0.0, c,
+    ];
+    let b = [
+        0.0,
+        0.0,
+        0.0,
+        -2_612.611_568_216_860_6,
+        7.863_724_506_057_967e-3,
+        -114_649.681_926_225_14,
+    ];
+    let s = Settings::<f64>::default();
+    for equilibrate in [false, true] {
+        let mut kkt = folio_tests::dense_kkt::dense_kkt::<f64>(5, &k, folio_solvers::Ordering::Amd)
+            .expect("a 6 x 6 KKT matrix");
+        kkt.set_equilibration(equilibrate);
+        let outcome = kkt.factorize(s.pivot_epsilon, s.regularization);
+        assert_eq!(
+            outcome,
+            folio_solvers::ldlt::FactorOutcome::Factored {
+                regularized: 1,
+                regularized_primal: 0
+            },
+            "equilibrate {equilibrate}"
+        );
+        let mut z = [0.0; 6];
+        let r = kkt.solve_refined(&mut z, &b, s.refinement_steps, s.refinement_tolerance);
+        assert!(
+            r.relative_residual <= s.refinement_tolerance,
+            "equilibrate {equilibrate}: {r:?}"
+        );
+        let true_residual = (0..6)
+            .map(|i| (b[i] - (0..6).map(|j| k[i * 6 + j] * z[j]).sum::<f64>()).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            true_residual <= 1e-6,
+            "equilibrate {equilibrate}: {true_residual:e}"
+        );
+    }
+}
