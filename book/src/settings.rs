@@ -335,9 +335,10 @@ impl<T: Real> Default for BookSettings<T> {
     }
 }
 
-/// The page grid of [`BookSettings::microcontroller`] (quads across, along): the finest that
-/// keeps the default page turn's median active step under 1.5 M instructions on the
-/// Cortex-M4F in `f32` (issue 40's `page-turn-mcu`). Measured with the firmware
+/// The page grid of [`BookSettings::microcontroller`] (quads across, along): the finest with
+/// about square cells that keeps the default page turn's median active step under 1.5 M
+/// instructions on the Cortex-M4F in `f32` (issue 40's `page-turn-mcu`; 3 x 5 is under it
+/// too, at 1.45 M with cells of 4 x 3.3, too close to the bound). Measured with the firmware
 /// (`embedded/`, QEMU `-icount`; median / p99 instructions per active step, heap peak):
 /// 8 x 11 (the default) 18.9 M / 43.7 M, 683 KB; 6 x 8 8.0 M / 12.7 M, 388 KB; 5 x 7
 /// 4.9 M / 9.2 M, 298 KB; 4 x 6 3.0 M / 5.9 M, 225 KB; 4 x 4 2.0 M / 3.4 M, 172 KB;
