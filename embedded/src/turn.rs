@@ -76,7 +76,7 @@ impl Accuracy {
     /// Takes in the active page of `book` after a step.
     fn record(&mut self, book: &Book<Real>) {
         let whole = |value: Real, unit: f64| {
-            let v = f64::from(value) * unit;
+            let v = folio_kernels::Real::to_f64(value) * unit;
             if v.is_finite() && v >= 0.0 {
                 // Rounded up: a bound read off this never flatters.
                 let whole = v as u64;
