@@ -371,11 +371,6 @@ impl<T: Real> NormalEquations<T> {
     }
 }
 
-/// $J^\top$'s structure, $S$'s upper pattern and its AMD analysis for the Jacobian block of
-/// `kkt` ([`NormalEquations::new`]). Not generic, and never inlined into the generic caller:
-/// setup code, compiled once for every value type and with this crate's optimization
-/// settings (the firmware optimizes this crate for size).
-#[inline(never)]
 /// The back-substitution of a node pinned along `normal` ([`NormalEquations::pin_along`]):
 /// with $\delta_i = -w_i^{-1} g$ the isotropic step, its anisotropic one is
 /// $-(w_i^{-1} I - c\thinspace n n^\top) g = \delta_i - c\thinspace w_i\thinspace n (n\cdot\delta_i)$;
@@ -390,6 +385,11 @@ pub fn slide<T: Real>(delta: &mut [T], dofs: [usize; 3], normal: [T; 3], held: T
     }
 }
 
+/// $J^\top$'s structure, $S$'s upper pattern and its AMD analysis for the Jacobian block of
+/// `kkt` ([`NormalEquations::new`]). Not generic, and never inlined into the generic caller:
+/// setup code, compiled once for every value type and with this crate's optimization
+/// settings (the firmware optimizes this crate for size).
+#[inline(never)]
 fn structure(kkt: &KktPattern) -> (Transpose, KktPattern, Symbolic) {
     let rows = kkt.rows;
     let transpose = Transpose::new(kkt);

@@ -11,7 +11,6 @@
 //! through these maps: no search, no allocation.
 
 use alloc::vec::Vec;
-use core::ops::Range;
 use folio_kernels::{Constraint, Potential, Real};
 
 use crate::error::SolverError;
@@ -222,7 +221,6 @@ impl KktPattern {
         entries.clear();
         let mut declare = Declare {
             dof_of: &self.dof_of,
-            dofs: self.coordinate_of.len(),
             node_count,
             with_constraint_hessian,
             families,
@@ -249,12 +247,7 @@ impl KktPattern {
         self.dofs = self.coordinate_of.len();
         self.rows = rows;
         self.with_constraint_hessian = with_constraint_hessian;
-        let keys = compress(
-            entries,
-            self.dofs + rows,
-            &mut self.col_ptr,
-            &mut self.row_idx,
-        )?;
+        let keys = compress(self, entries)?;
         self.jacobian_slots.clear_for(self.row_idx.len());
         self.jacobian_slots.room_for(jacobian_len);
         self.fill_slots();
@@ -297,16 +290,6 @@ impl KktPattern {
         }
     }
 
-    /// Slot of upper-triangle entry `(row, col)`, `row <= col`; setup only (binary search).
-    fn slot(&self, row: u32, col: u32) -> u32 {
-        let start = self.col_ptr[col as usize] as usize;
-        let end = self.col_ptr[col as usize + 1] as usize;
-        match self.row_idx[start..end].binary_search(&row) {
-            Ok(p) => (start + p) as u32,
-            Err(_) => NONE,
-        }
-    }
-
     /// Chooses each family's Hessian layout and fills the slot maps ([`KktPattern::fill_maps`]).
     fn fill_slots(&mut self) {
         let mut families = core::mem::take(&mut self.families);
@@ -321,6 +304,19 @@ impl KktPattern {
 
     /// Fills the Hessian and Jacobian slot maps from the local dofs, in each family's
     /// layout ([`Family::hessian_per_term`]).
+    ///
+    /// Few slots are searched for: most are guessed from a neighbour already mapped, and a
+    /// guess is kept when the row stored there is the one sought ([`locate`]). A column's
+    /// rows are sorted and distinct, and a node's free coordinates are consecutive dofs, so
+    /// - rows $a - 1$ and $a$ of one column are neighbours: $(a, b)$ is one past
+    ///   $(a - 1, b)$, the entry above or to the left in the term's local block;
+    /// - the primal columns $b - 1$ and $b$ of one node hold the same rows below the node
+    ///   (every term that couples one of its coordinates couples all three), so $(a, b)$
+    ///   sits as far into column $b$ as $(a, b - 1)$ does into column $b - 1$;
+    /// - a diagonal entry is the last of its column.
+    ///
+    /// Only the first coordinates of two distinct nodes, and the first free dof of a term in
+    /// each Jacobian row, are searched for.
     pub(crate) fn fill_maps(&mut self) {
         let mut families = core::mem::take(&mut self.families);
         let nnz = self.row_idx.len();
@@ -331,38 +327,111 @@ impl KktPattern {
             .map(|f| f.terms * f.hessian_per_term())
             .sum();
         self.hessian_slots.room_for(hessian_len);
+        // The slots of the local row above (`p - 1`), by local column `q` (row 0 of a term
+        // reads none of them: nothing comes before its first local dof), for terms of up to
+        // 16 nodes; a wider term's slots are searched for (no allocation either way).
+        let mut above = [NONE; 48];
+        let (col_ptr, row_idx) = (&self.col_ptr, &self.row_idx);
+        // The slot `slot` of column `col - 1` moved to the same depth in column `col`.
+        let across = |slot: u32, col: u32| {
+            if slot == NONE {
+                NONE
+            } else {
+                slot.wrapping_sub(col_ptr[col as usize - 1])
+                    .wrapping_add(col_ptr[col as usize])
+            }
+        };
         for f in &mut families {
             f.hessian_offset = self.hessian_slots.len();
             f.jacobian_offset = self.jacobian_slots.len();
             let s = 3 * f.nodes;
             for t in 0..f.terms {
-                let base = f.dof_offset + t * s;
+                let local = &self.local_dofs[f.dof_offset + t * s..][..s];
+                // Whether local dof `p` is one past local dof `p - 1` (both free).
+                let follows =
+                    |p: usize| p > 0 && local[p - 1] != NONE && local[p - 1] + 1 == local[p];
                 if f.has_hessian {
                     for p in 0..s {
                         let from = if f.hessian_upper { p } else { 0 };
+                        let mut left = NONE;
                         for q in from..s {
-                            let a = self.local_dofs[base + p];
-                            let b = self.local_dofs[base + q];
-                            let slot = if a == NONE || b == NONE || (a > b && !f.hessian_upper) {
+                            let (a, b) = (local[p], local[q]);
+                            let slot = if a == NONE || b == NONE {
                                 NONE
+                            } else if a < b {
+                                // Row `a` of column `b`: one past (a - 1, b) above, or as
+                                // deep as (a, b - 1) on the left.
+                                let up = above.get(q).copied().unwrap_or(NONE);
+                                if up != NONE && follows(p) {
+                                    up + 1
+                                } else {
+                                    let guess = if follows(q) { across(left, b) } else { NONE };
+                                    locate(col_ptr, row_idx, a, b, guess)
+                                }
+                            } else if a == b {
+                                col_ptr[a as usize + 1] - 1
+                            } else if !f.hessian_upper {
+                                NONE
+                            } else if left != NONE && follows(q) {
+                                // Row `b` of column `a`: one past (b - 1, a) on the left, or
+                                // as deep as (b, a - 1) above.
+                                left + 1
                             } else {
-                                self.slot(a.min(b), a.max(b))
+                                let guess = if follows(p) {
+                                    across(above[q], a)
+                                } else {
+                                    NONE
+                                };
+                                locate(col_ptr, row_idx, b, a, guess)
                             };
+                            debug_assert!(
+                                slot == NONE || row_idx[slot as usize] == a.min(b),
+                                "slot of ({a}, {b})"
+                            );
                             self.hessian_slots.push(slot);
+                            if let Some(up) = above.get_mut(q) {
+                                *up = slot;
+                            }
+                            left = slot;
                         }
                     }
                 }
                 for r in 0..f.rows {
                     let col = (self.dofs + f.first_row + t * f.rows + r) as u32;
-                    for p in 0..s {
-                        let a = self.local_dofs[base + p];
-                        let slot = if a == NONE { NONE } else { self.slot(a, col) };
+                    let mut previous = NONE;
+                    for (p, &a) in local.iter().enumerate() {
+                        let slot = if a == NONE {
+                            NONE
+                        } else {
+                            let guess = if follows(p) && previous != NONE {
+                                previous + 1
+                            } else {
+                                NONE
+                            };
+                            locate(col_ptr, row_idx, a, col, guess)
+                        };
                         self.jacobian_slots.push(slot);
+                        previous = slot;
                     }
                 }
             }
         }
         self.families = families;
+    }
+}
+
+/// Slot of upper-triangle entry `(row, col)`, `row <= col`, of the compressed columns
+/// `col_ptr` / `row_idx`, or [`NONE`] when it is not stored: `guess` when it lies in the
+/// column and holds `row`, else found by binary search. Setup only.
+fn locate(col_ptr: &[u32], row_idx: &[u32], row: u32, col: u32, guess: u32) -> u32 {
+    let start = col_ptr[col as usize] as usize;
+    let end = col_ptr[col as usize + 1] as usize;
+    if (start..end).contains(&(guess as usize)) && row_idx[guess as usize] == row {
+        return guess;
+    }
+    match row_idx[start..end].binary_search(&row) {
+        Ok(p) => (start + p) as u32,
+        Err(_) => NONE,
     }
 }
 
@@ -376,12 +445,11 @@ fn repeats(dofs: &[u32]) -> bool {
 /// The declaring visitor: numbers rows, records local dofs and the pattern's entries.
 struct Declare<'a> {
     dof_of: &'a [u32],
-    dofs: usize,
     node_count: usize,
     with_constraint_hessian: bool,
     families: Vec<Family>,
     local_dofs: Vec<u32>,
-    /// `(col << 32) | row` keys of upper-triangle entries.
+    /// `(col << 32) | row` keys of the node pairs the Hessian blocks couple, `row <= col`.
     entries: &'a mut Vec<u64>,
     rows: usize,
     jacobian_len: usize,
@@ -403,7 +471,6 @@ impl Declare<'_> {
         let mut terms = 0;
         for (t, term_nodes) in nodes.enumerate() {
             terms += 1;
-            let base = self.local_dofs.len();
             for &node in &term_nodes {
                 if node as usize >= self.node_count {
                     self.error.get_or_insert(SolverError::NodeOutOfRange {
@@ -418,7 +485,9 @@ impl Declare<'_> {
                 let c = 3 * node as usize;
                 self.local_dofs.extend_from_slice(&self.dof_of[c..c + 3]);
             }
-            self.term_entries(base..self.local_dofs.len(), rows, with_hessian);
+            if with_hessian {
+                self.couple(&term_nodes);
+            }
             self.rows += rows;
         }
         self.jacobian_len += terms * 3 * N * rows;
@@ -435,81 +504,162 @@ impl Declare<'_> {
         });
     }
 
-    /// Records the entries of the term whose local dofs are `local_dofs[local]`: its Hessian
-    /// couplings (`with_hessian`) and its `rows` Jacobian rows, whose multipliers are the
-    /// next `rows` constraint rows.
-    fn term_entries(&mut self, local: Range<usize>, rows: usize, with_hessian: bool) {
-        if with_hessian {
-            for p in local.clone() {
-                for q in local.clone() {
-                    let (a, b) = (self.local_dofs[p], self.local_dofs[q]);
-                    if a != NONE && b != NONE && a <= b {
-                        self.entries.push((u64::from(b) << 32) | u64::from(a));
-                    }
-                }
-            }
-        }
-        for r in 0..rows {
-            // The column of this row's multiplier.
-            let col = (self.dofs + self.rows + r) as u64;
-            for p in local.clone() {
-                let a = self.local_dofs[p];
-                if a != NONE {
-                    self.entries.push((col << 32) | u64::from(a));
+    /// Records the node pairs a term's Hessian block couples, each node with itself
+    /// included (a node out of range is left out: its error is recorded).
+    fn couple(&mut self, nodes: &[u32]) {
+        for (i, &n) in nodes.iter().enumerate() {
+            for &m in &nodes[i..] {
+                if (n.max(m) as usize) < self.node_count {
+                    self.entries
+                        .push((u64::from(n.max(m)) << 32) | u64::from(n.min(m)));
                 }
             }
         }
     }
 }
 
-/// Compressed upper columns of order `order` from `(col << 32) | row` keys, with every
-/// diagonal entry added, into `col_ptr` (`order + 1` pointers) and `row_idx` (rows sorted
-/// within each column, duplicates merged). Sorts `entries` in place ([`sort_by_column`]);
-/// returns how many keys it held before they merged.
+/// The compressed upper columns of `pattern` (its `col_ptr` and `row_idx`; every other
+/// field set) from the node pairs its Hessian blocks couple, `(col << 32) | row` keys in
+/// `entries` (rows sorted within each column, the diagonal last and always present).
+/// Node $n$'s free coordinates are consecutive dofs, numbered node by node, so primal
+/// column $b$ of node $n$ holds the free dofs of every node $m < n$ coupled to $n$, in the
+/// order of the nodes, then those of $n$ up to $b$ when $n$ couples to itself (else $b$
+/// alone); a constraint row's column holds its term's distinct free dofs and the diagonal.
+/// The pairs are sorted and merged first ([`sort_distinct_by_column`]), among nodes, not
+/// dofs: nine times fewer keys. Returns how many keys `entries` held before they merged.
 ///
 /// # Errors
 /// [`SolverError::TooLarge`] beyond 32-bit indices.
-fn compress(
-    entries: &mut Vec<u64>,
-    order: usize,
-    col_ptr: &mut Vec<u32>,
-    row_idx: &mut Vec<u32>,
-) -> Result<usize, SolverError> {
+fn compress(pattern: &mut KktPattern, entries: &mut Vec<u64>) -> Result<usize, SolverError> {
+    let order = pattern.order();
+    let node_count = pattern.dof_of.len() / 3;
     if order >= NONE as usize {
         return Err(SolverError::TooLarge);
     }
-    entries.extend((0..order as u64).map(|k| (k << 32) | k));
     let keys = entries.len();
-    if keys >= NONE as usize {
+    let KktPattern {
+        dof_of,
+        col_ptr,
+        row_idx,
+        families,
+        local_dofs,
+        dofs,
+        ..
+    } = pattern;
+    sort_distinct_by_column(entries, node_count, col_ptr, row_idx);
+    let free = |n: u64| {
+        dof_of[3 * n as usize..][..3]
+            .iter()
+            .copied()
+            .filter(|&d| d != NONE)
+    };
+    let mut nnz = 0usize;
+    let mut from = 0;
+    for n in 0..node_count {
+        let (couples, to) = coupled(entries, from, n);
+        from = to;
+        let own = free(n as u64).count();
+        let below: usize = couples
+            .clone()
+            .filter(|&m| m != n as u64)
+            .map(|m| free(m).count())
+            .sum();
+        let itself = couples.clone().any(|m| m == n as u64);
+        nnz += own * below + if itself { own * (own + 1) / 2 } else { own };
+    }
+    for f in families.iter().filter(|f| f.rows > 0) {
+        let s = 3 * f.nodes;
+        for t in 0..f.terms {
+            let local = &local_dofs[f.dof_offset + t * s..][..s];
+            let distinct = local
+                .iter()
+                .enumerate()
+                .filter(|&(p, &a)| a != NONE && !local[..p].contains(&a))
+                .count();
+            nnz += f.rows * (distinct + 1);
+        }
+    }
+    if nnz >= NONE as usize {
         return Err(SolverError::TooLarge);
     }
-    sort_by_column(entries, order, col_ptr, row_idx);
-    entries.dedup();
-    refill(col_ptr, order + 1, 0);
+    col_ptr.clear();
+    col_ptr.reserve_exact(order + 1);
+    col_ptr.push(0);
     row_idx.clear();
-    row_idx.reserve_exact(entries.len());
-    for &key in entries.iter() {
-        col_ptr[(key >> 32) as usize + 1] += 1;
-        row_idx.push(key as u32);
+    row_idx.reserve_exact(nnz);
+    let mut from = 0;
+    for n in 0..node_count {
+        let (couples, to) = coupled(entries, from, n);
+        from = to;
+        for b in free(n as u64) {
+            for m in couples.clone() {
+                row_idx.extend(free(m).filter(|&d| d <= b));
+            }
+            if row_idx.last() != Some(&b) {
+                row_idx.push(b);
+            }
+            col_ptr.push(row_idx.len() as u32);
+        }
     }
-    for k in 0..order {
-        col_ptr[k + 1] += col_ptr[k];
+    for f in families.iter().filter(|f| f.rows > 0) {
+        let s = 3 * f.nodes;
+        for t in 0..f.terms {
+            let start = row_idx.len();
+            row_idx.extend(
+                local_dofs[f.dof_offset + t * s..][..s]
+                    .iter()
+                    .filter(|&&a| a != NONE),
+            );
+            row_idx[start..].sort_unstable();
+            let mut end = start;
+            for k in start..row_idx.len() {
+                if k == start || row_idx[k] != row_idx[end - 1] {
+                    row_idx[end] = row_idx[k];
+                    end += 1;
+                }
+            }
+            row_idx.truncate(end);
+            for r in 0..f.rows {
+                if r > 0 {
+                    row_idx.extend_from_within(start..end);
+                }
+                row_idx.push((*dofs + f.first_row + t * f.rows + r) as u32);
+                col_ptr.push(row_idx.len() as u32);
+            }
+        }
     }
+    debug_assert_eq!((col_ptr.len(), row_idx.len()), (order + 1, nnz));
     Ok(keys)
 }
 
-/// Sorts `(col << 32) | row` keys (every column below `order`) as `sort_unstable` would,
-/// in two passes: an in-place bucket sort by column (American flag sort: count the keys of
-/// each column, then swap each key into its column's next free place, $O(n)$), then a sort
-/// of each column's keys, a few dozen. A global sort of the active page's keys compared
-/// each about $\log_2 n \approx 15$ times, in 64 bits, which a Cortex-M4 does in several
-/// instructions. `col_ptr` and `cursor` are scratch (left holding the column starts and
-/// ends).
-fn sort_by_column(
-    entries: &mut [u64],
+/// The nodes coupled to node `n` (`m <= n`, ascending) in the sorted, distinct node pairs
+/// `keys`, whose column `n` starts at `from`; and where the next column starts.
+fn coupled(keys: &[u64], from: usize, n: usize) -> (impl Iterator<Item = u64> + Clone + '_, usize) {
+    let len = keys[from..]
+        .iter()
+        .take_while(|&&key| (key >> 32) as usize == n)
+        .count();
+    let column = keys[from..from + len]
+        .iter()
+        .map(|&key| key & u64::from(u32::MAX));
+    (column, from + len)
+}
+
+/// Sorts `(col << 32) | row` keys (every column below `order`, every row below `order`)
+/// and merges duplicates, as `sort_unstable` then `dedup` would, leaving `col_ptr` the
+/// `order + 1` starts of the distinct keys' columns. Three passes: an in-place bucket sort
+/// by column (American flag sort: count the keys of each column, then swap each key into
+/// its column's next free place, $O(n)$); then, column by column, the first key of each
+/// row is kept (a row marked with its column), the others dropped, compacting in place;
+/// then the few dozen distinct keys of each column are sorted. A global sort of the
+/// active page's keys compared each about $\log_2 n \approx 15$ times, in 64 bits, which a
+/// Cortex-M4 does in several instructions; and most keys are duplicates (a pair of nodes
+/// shares several terms). `scratch` is scratch.
+fn sort_distinct_by_column(
+    entries: &mut Vec<u64>,
     order: usize,
     col_ptr: &mut Vec<u32>,
-    cursor: &mut Vec<u32>,
+    scratch: &mut Vec<u32>,
 ) {
     refill(col_ptr, order + 1, 0);
     for &key in entries.iter() {
@@ -518,6 +668,7 @@ fn sort_by_column(
     for k in 0..order {
         col_ptr[k + 1] += col_ptr[k];
     }
+    let cursor = scratch;
     cursor.clear();
     cursor.extend_from_slice(&col_ptr[..order]);
     for c in 0..order {
@@ -533,9 +684,26 @@ fn sort_by_column(
             }
         }
     }
+    // The column each row was last kept in.
+    let seen = cursor;
+    refill(seen, order, NONE);
+    let mut kept = 0;
     for c in 0..order {
-        entries[col_ptr[c] as usize..col_ptr[c + 1] as usize].sort_unstable();
+        let (start, end) = (col_ptr[c] as usize, col_ptr[c + 1] as usize);
+        col_ptr[c] = kept as u32;
+        for at in start..end {
+            let key = entries[at];
+            let row = key as u32 as usize;
+            if seen[row] != c as u32 {
+                seen[row] = c as u32;
+                entries[kept] = key;
+                kept += 1;
+            }
+        }
+        entries[col_ptr[c] as usize..kept].sort_unstable();
     }
+    col_ptr[order] = kept as u32;
+    entries.truncate(kept);
 }
 
 impl<T: Real> TermVisitor<T> for Declare<'_> {
@@ -554,15 +722,19 @@ impl<T: Real> TermVisitor<T> for Declare<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::{KktPattern, NONE, sort_by_column};
+    use super::{KktPattern, NONE, sort_distinct_by_column};
     use crate::chain::Chain;
+    use crate::model::{ConstraintSet, Model, PotentialSet, TermVisitor};
+    use alloc::collections::BTreeSet;
     use alloc::vec::Vec;
+    use folio_kernels::iso2d::Iso2d;
     use folio_kernels::splitmix::SplitMix64;
+    use folio_kernels::spring::Spring;
 
-    /// The two-pass sort orders keys as one global sort does: random keys with many
-    /// duplicates, empty columns, a single column, and none.
+    /// The sort by column orders and merges keys as one global sort and `dedup` do: random
+    /// keys with many duplicates, empty columns, a single column, and none.
     #[test]
-    fn sorting_by_column_equals_a_global_sort() {
+    fn sorting_by_column_equals_a_global_sort_and_dedup() {
         let mut rng = SplitMix64::new(0x50_27);
         for (order, count) in [(1, 40), (7, 0), (7, 300), (60, 5), (300, 20_000)] {
             let mut keys: Vec<u64> = (0..count)
@@ -575,11 +747,159 @@ mod tests {
                 .collect();
             let mut expected = keys.clone();
             expected.sort_unstable();
-            let (mut col_ptr, mut cursor) = (Vec::new(), Vec::new());
-            sort_by_column(&mut keys, order as usize, &mut col_ptr, &mut cursor);
+            expected.dedup();
+            let (mut col_ptr, mut scratch) = (Vec::new(), Vec::new());
+            sort_distinct_by_column(&mut keys, order as usize, &mut col_ptr, &mut scratch);
             assert_eq!(keys, expected, "order {order}, {count} keys");
             assert_eq!(col_ptr.len(), order as usize + 1);
-            assert_eq!(col_ptr[order as usize] as usize, count);
+            assert_eq!(col_ptr[order as usize] as usize, expected.len());
+            for c in 0..order as usize {
+                let column = &keys[col_ptr[c] as usize..col_ptr[c + 1] as usize];
+                assert!(
+                    column.iter().all(|&k| (k >> 32) as usize == c),
+                    "column {c}"
+                );
+            }
+        }
+    }
+
+    /// A model of random springs and length constraints (some on one node twice) among
+    /// `nodes` nodes with random coordinates eliminated.
+    struct Scatter {
+        nodes: usize,
+        fixed: Vec<bool>,
+        springs: PotentialSet<f64, Spring<f64>, 2>,
+        lengths: ConstraintSet<Iso2d<f64>, 2>,
+    }
+
+    impl Model<f64> for Scatter {
+        fn topology_version(&self) -> u64 {
+            0
+        }
+        fn node_count(&self) -> usize {
+            self.nodes
+        }
+        fn is_fixed(&self, node: usize, axis: usize) -> bool {
+            self.fixed[3 * node + axis]
+        }
+        fn mass(&self, _node: usize) -> f64 {
+            1.0
+        }
+        fn visit_terms<V: TermVisitor<f64>>(&self, visitor: &mut V) {
+            visitor.potentials(&self.springs);
+            visitor.constraints(&self.lengths);
+        }
+    }
+
+    /// The pattern equals the one read off every term's local dofs pair by pair (the
+    /// definition: each free pair of a Hessian block, each free dof of a Jacobian row,
+    /// every diagonal), over random models with eliminated coordinates, isolated nodes
+    /// and terms that name a node twice; and every slot lands on its entry.
+    #[test]
+    fn pattern_equals_the_pairs_of_the_terms() {
+        let mut rng = SplitMix64::new(0xd0f5);
+        for case in 0..60 {
+            let nodes = 1 + (rng.next_u64() % 30) as usize;
+            let mut pick = || (rng.next_u64() % nodes as u64) as u32;
+            let mut model = Scatter {
+                nodes,
+                fixed: Vec::new(),
+                springs: PotentialSet::new(1.0),
+                lengths: ConstraintSet::new(),
+            };
+            for _ in 0..(case % 7) * nodes / 3 {
+                let pair = [pick(), pick()];
+                model.springs.push(Spring::new(1.0, 1.0).unwrap(), pair);
+            }
+            for _ in 0..case % 5 {
+                let pair = [pick(), pick()];
+                model.lengths.push(Iso2d::new(1.0).unwrap(), pair);
+            }
+            model.fixed = (0..3 * nodes).map(|_| rng.next_u64() % 4 == 0).collect();
+            for hessian in [false, true] {
+                let p = KktPattern::build(&model, hessian).unwrap();
+                let mut expected = BTreeSet::new();
+                for k in 0..p.order() as u32 {
+                    expected.insert((k, k));
+                }
+                let dofs = |n: u32| p.dof_of[3 * n as usize..][..3].to_vec();
+                // Every free pair of a Hessian block on `nodes`, upper.
+                let mut block = |nodes: &[u32; 2]| {
+                    let local: Vec<u32> = nodes.iter().flat_map(|&n| dofs(n)).collect();
+                    for &a in &local {
+                        for &b in &local {
+                            if a != NONE && b != NONE && a <= b {
+                                expected.insert((b, a));
+                            }
+                        }
+                    }
+                };
+                for t in model.springs.terms() {
+                    block(&t.nodes);
+                }
+                if hessian {
+                    for t in model.lengths.terms() {
+                        block(&t.nodes);
+                    }
+                }
+                for (r, t) in model.lengths.terms().iter().enumerate() {
+                    let col = (p.dofs + r) as u32;
+                    for a in t.nodes.iter().flat_map(|&n| dofs(n)) {
+                        if a != NONE {
+                            expected.insert((col, a));
+                        }
+                    }
+                }
+                let built: Vec<(u32, u32)> = (0..p.order())
+                    .flat_map(|c| {
+                        p.row_idx[p.col_ptr[c] as usize..p.col_ptr[c + 1] as usize]
+                            .iter()
+                            .map(move |&r| (c as u32, r))
+                    })
+                    .collect();
+                let expected: Vec<(u32, u32)> = expected.into_iter().collect();
+                assert_eq!(built, expected, "case {case}, constraint Hessian {hessian}");
+                for f in &p.families {
+                    let s = 3 * f.nodes;
+                    for t in 0..f.terms {
+                        let local = &p.local_dofs[f.dof_offset + t * s..][..s];
+                        let h = f.hessian_per_term();
+                        for k in 0..h {
+                            let (row, q) = if f.hessian_upper {
+                                let mut k = k;
+                                let mut row = 0;
+                                while k >= s - row {
+                                    k -= s - row;
+                                    row += 1;
+                                }
+                                (row, row + k)
+                            } else {
+                                (k / s, k % s)
+                            };
+                            let (a, b) = (local[row], local[q]);
+                            let slot = p.hessian_slots.get(f.hessian_offset + t * h + k);
+                            if a == NONE || b == NONE || (a > b && !f.hessian_upper) {
+                                assert_eq!(slot, NONE);
+                            } else {
+                                assert!(holds(&p, slot, a.min(b), a.max(b)), "case {case}");
+                            }
+                        }
+                        for r in 0..f.rows {
+                            let col = (p.dofs + f.first_row + t * f.rows + r) as u32;
+                            for (q, &a) in local.iter().enumerate() {
+                                let slot = p
+                                    .jacobian_slots
+                                    .get(f.jacobian_offset + s * (t * f.rows + r) + q);
+                                if a == NONE {
+                                    assert_eq!(slot, NONE);
+                                } else {
+                                    assert!(holds(&p, slot, a, col), "case {case}");
+                                }
+                            }
+                        }
+                    }
+                }
+            }
         }
     }
 
