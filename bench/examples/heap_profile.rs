@@ -1,8 +1,10 @@
 //! Where the heap goes: opens a book in `f32` (the default one, or `mcu` for
 //! [`BookSettings::microcontroller`]) as the Cortex-M firmware does (without finger-bookmarking,
-//! which the firmware does not compile in), under an allocator that keeps every live
-//! allocation with the backtrace that made it, and prints what was live at the heap's peak,
-//! summed by the innermost three Folio frames on each backtrace. `usize` fields count 8 bytes
+//! which the firmware does not compile in), twice, under an allocator that finds the heap's
+//! peak in the first opening and, in the second, keeps every live allocation with the
+//! backtrace that made it; it prints what was live at the peak, summed by the innermost
+//! three Folio frames on each backtrace (a second or less, not minutes: only the live set at
+//! the peak is symbolized, once). `usize` fields count 8 bytes
 //! here and 4 on the Cortex-M, so the total is a little above the firmware's.
 //!
 //! ```sh
@@ -20,12 +22,20 @@ use std::sync::Mutex;
 
 use folio_book::{Book, BookSettings};
 
-/// Every live allocation (address → bytes, site) and the live set at the peak.
+/// What the allocator keeps: in the first opening only the heap's size and peak; in the
+/// second every live allocation with its (unresolved) backtrace, until the heap first
+/// reaches the first opening's peak, when the live set's sites are resolved and kept. The
+/// opening is deterministic, so the second reaches the same peak; resolving once, not at
+/// every new peak, keeps the run linear.
 #[derive(Default)]
 struct Ledger {
-    live: HashMap<usize, (usize, String)>,
+    /// Backtraces are taken (the second opening).
+    tracing: bool,
+    live: HashMap<usize, (usize, Option<Backtrace>)>,
     current: usize,
     peak: usize,
+    /// The peak to snapshot at (the first opening's).
+    target: usize,
     at_peak: Vec<(usize, String)>,
 }
 
@@ -36,10 +46,25 @@ thread_local! {
     static INSIDE: Cell<bool> = const { Cell::new(false) };
 }
 
-/// The innermost three frames of Folio's library crates on the current backtrace (function
-/// and `file:line`, innermost first), past the allocation machinery (`alloc`, `core`,
-/// `std`, this file).
-fn site() -> String {
+/// Runs `f` on the ledger, unless the allocator is already inside one (a backtrace and the
+/// ledger's maps allocate).
+fn with_ledger(f: impl FnOnce(&mut Ledger)) {
+    if INSIDE.with(Cell::get) {
+        return;
+    }
+    INSIDE.with(|i| i.set(true));
+    if let Ok(mut guard) = LEDGER.lock() {
+        if let Some(l) = guard.as_mut() {
+            f(l);
+        }
+    }
+    INSIDE.with(|i| i.set(false));
+}
+
+/// The innermost three frames of Folio's library crates on `trace` (function and
+/// `file:line`, innermost first), past the allocation machinery (`alloc`, `core`, `std`,
+/// this file).
+fn site(trace: &Backtrace) -> String {
     const CRATES: [&str; 5] = [
         "/book/src/",
         "/solvers/src/",
@@ -47,7 +72,7 @@ fn site() -> String {
         "/geometry/src/",
         "/pages/src/",
     ];
-    let trace = Backtrace::force_capture().to_string();
+    let trace = trace.to_string();
     let (mut name, mut frames) = ("", Vec::new());
     for line in trace.lines().map(str::trim) {
         if let Some(path) = line.strip_prefix("at ") {
@@ -89,37 +114,30 @@ unsafe impl GlobalAlloc for Recording {
 }
 
 fn record(ptr: usize, size: usize) {
-    if ptr == 0 || INSIDE.with(Cell::get) {
+    if ptr == 0 {
         return;
     }
-    INSIDE.with(|i| i.set(true));
-    let at = site();
-    if let Ok(mut guard) = LEDGER.lock() {
-        if let Some(l) = guard.as_mut() {
-            l.live.insert(ptr, (size, at));
-            l.current += size;
-            if l.current > l.peak {
-                l.peak = l.current;
-                l.at_peak = l.live.values().cloned().collect();
-            }
+    with_ledger(|l| {
+        let trace = l.tracing.then(Backtrace::force_capture);
+        l.live.insert(ptr, (size, trace));
+        l.current += size;
+        l.peak = l.peak.max(l.current);
+        if l.tracing && l.at_peak.is_empty() && l.current >= l.target {
+            l.at_peak = l
+                .live
+                .values()
+                .map(|(size, trace)| (*size, trace.as_ref().map_or_else(String::new, site)))
+                .collect();
         }
-    }
-    INSIDE.with(|i| i.set(false));
+    });
 }
 
 fn forget(ptr: usize) {
-    if INSIDE.with(Cell::get) {
-        return;
-    }
-    INSIDE.with(|i| i.set(true));
-    if let Ok(mut guard) = LEDGER.lock() {
-        if let Some(l) = guard.as_mut() {
-            if let Some((size, _)) = l.live.remove(&ptr) {
-                l.current -= size;
-            }
+    with_ledger(|l| {
+        if let Some((size, _)) = l.live.remove(&ptr) {
+            l.current -= size;
         }
-    }
-    INSIDE.with(|i| i.set(false));
+    });
 }
 
 #[global_allocator]
@@ -135,20 +153,41 @@ fn main() -> ExitCode {
         }
     };
     settings.effects.bookmarking = false;
-    *LEDGER.lock().expect("the ledger") = Some(Ledger::default());
-    let book = match Book::new(settings) {
-        Ok(book) => book,
-        Err(e) => {
-            eprintln!("the book does not open: {e}");
-            return ExitCode::FAILURE;
+    // The first opening finds the peak, the second snapshots the live set at it.
+    let mut target = 0;
+    for tracing in [false, true] {
+        *LEDGER.lock().expect("the ledger") = Some(Ledger {
+            tracing,
+            target,
+            ..Ledger::default()
+        });
+        let book = match Book::new(settings) {
+            Ok(book) => book,
+            Err(e) => {
+                eprintln!("the book does not open: {e}");
+                return ExitCode::FAILURE;
+            }
+        };
+        let ledger = LEDGER.lock().expect("the ledger").take();
+        drop(book);
+        match ledger {
+            Some(l) if !tracing => target = l.peak,
+            Some(l) => return report(l),
+            None => return ExitCode::FAILURE,
         }
-    };
-    let ledger = LEDGER
-        .lock()
-        .expect("the ledger")
-        .take()
-        .expect("the ledger");
-    drop(book);
+    }
+    ExitCode::FAILURE
+}
+
+/// Prints the live set at the peak, by site, largest first.
+fn report(ledger: Ledger) -> ExitCode {
+    if ledger.at_peak.is_empty() {
+        eprintln!(
+            "the second opening peaked at {} B, below the first's {} B: not deterministic",
+            ledger.peak, ledger.target
+        );
+        return ExitCode::FAILURE;
+    }
     let mut by_site: HashMap<String, (usize, usize)> = HashMap::new();
     for (size, at) in ledger.at_peak {
         let e = by_site.entry(at).or_default();
