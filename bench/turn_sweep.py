@@ -8,6 +8,7 @@ cell is `passed/variants` at one height.
     cargo build --release -p folio
     python3 bench/turn_sweep.py                                  # 8 x 11, f64 and f32
     python3 bench/turn_sweep.py --grid 6x8 --grid 12x16 --precision f32
+    python3 bench/turn_sweep.py --solver 'newton_iterations = 4'
 
 A swipe is a `drag` event whose point has `|x| == 5` (the scene's middle points); its
 height is replaced, the side (sign of x) and the rest kept. A release happens at the
@@ -62,6 +63,12 @@ def main() -> int:
     p.add_argument("--bin", default=str(ROOT / "target" / "release" / "folio"))
     p.add_argument("--grid", action="append", help="COLSxROWS, repeatable (default: the scene's)")
     p.add_argument("--precision", action="append", choices=["f64", "f32"])
+    p.add_argument(
+        "--solver",
+        action="append",
+        default=[],
+        help="a `[solver]` line for every variant, repeatable (e.g. 'newton_iterations = 4')",
+    )
     args = p.parse_args()
     scene, binary = Path(args.scene), Path(args.bin)
     if not binary.is_file() or not scene.is_file():
@@ -77,7 +84,7 @@ def main() -> int:
     with tempfile.TemporaryDirectory() as tmp:
         for grid in grids:
             for precision in precisions:
-                solver = f'precision = "{precision}"\n'
+                solver = f'precision = "{precision}"\n' + "".join(f"{line}\n" for line in args.solver)
                 if grid:
                     cols, rows = grid.split("x")
                     solver += f"grid = [{int(cols)}, {int(rows)}]\n"
