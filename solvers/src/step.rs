@@ -94,7 +94,7 @@ struct Workspace<T: Real> {
     /// Per node, a contact the projection let go of in this call: the node was held along
     /// a normal and the constraints pulled it off its surface ([`projection::Pins`]).
     released: Vec<bool>,
-    /// The pattern's entry keys while it is rebuilt ([`KktPattern::rebuild`]).
+    /// The pattern's node-pair keys while it is rebuilt ([`KktPattern::rebuild`]).
     entries: Vec<u64>,
     /// How many keys the last rebuild held before they merged (0 before the first).
     keys: usize,
@@ -212,7 +212,7 @@ impl<T: Real> Workspace<T> {
         self.kkt
             .reserve(grown(n), grown(nnz), scaled(nnz_l, FILL_GROWTH * scale));
         self.kkt.pattern.reserve_scaled(scale);
-        self.entries.room_for(grown(self.keys.max(nnz)));
+        self.entries.room_for(grown(self.keys));
         for v in [
             &mut self.rhs,
             &mut self.product,
