@@ -204,6 +204,9 @@ pub struct SolverSection {
     pub newton_tolerance: Option<Spanned<f64>>,
     /// Include the constraint Hessian in the KKT matrix (dog; default false, the seed's).
     pub constraint_hessian: Option<Spanned<bool>>,
+    /// Restart length of the KKT refinement's GMRES in `f32` (dog, 1 to 50; default 10): its
+    /// basis holds one more vector of the KKT order than this.
+    pub krylov_restart: Option<Spanned<u32>>,
     /// Collision detect/resolve rounds per step (dog, 1 to 16; default 3, the seed's).
     pub collision_rounds: Option<Spanned<u32>>,
     /// The constraint projection after a step (dog; default true; `false` is
@@ -695,6 +698,7 @@ impl Scene {
             ("newton_iterations", &s.newton_iterations, 1..=20),
             ("max_corrections", &s.max_corrections, 0..=50),
             ("collision_rounds", &s.collision_rounds, 1..=16),
+            ("krylov_restart", &s.krylov_restart, 1..=50),
         ];
         for (name, v, range) in dog_only {
             let Some(v) = v else { continue };

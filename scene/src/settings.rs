@@ -16,7 +16,7 @@ use crate::scene::Scene;
 /// `[solver]`: `grid` sets `quads_across` and `quads_along`; `newton_tolerance` sets
 /// `solver.tolerance` (Newton checks the eq. 3 residual before each iteration and stops at
 /// the first iterate within it, else after `newton_iterations`); `constraint_hessian`,
-/// `collision_rounds` and `max_corrections` set their fields, and `projection = false` sets
+/// `collision_rounds`, `krylov_restart` and `max_corrections` set their fields, and `projection = false` sets
 /// `max_corrections = 0`. `newton_iterations` goes through
 /// `folio_book::BookSettings::set_newton_iterations`, which also sets the refinement the
 /// linear solves need for that many iterations.
@@ -58,6 +58,7 @@ pub fn book_settings<T: Real>(scene: &Scene) -> BookSettings<T> {
             v.constraint_hessian.as_ref(),
         );
         set(&mut s.collision_rounds, v.collision_rounds.as_ref());
+        set(&mut s.solver.krylov_restart, v.krylov_restart.as_ref());
         set(&mut s.max_corrections, v.max_corrections.as_ref());
         if v.projection.as_ref().is_some_and(|p| !*p.get_ref()) {
             s.max_corrections = 0;

@@ -33,7 +33,7 @@ fn refused_at_value(name: &str, line: &str, says: &str) {
 fn every_dog_key_reaches_the_book_settings() {
     let keys = "grid = [10, 14]\nprecision = \"f32\"\nnewton_iterations = 3\n\
                 newton_tolerance = 1e-5\nconstraint_hessian = true\ncollision_rounds = 5\n\
-                projection = false";
+                krylov_restart = 4\nprojection = false";
     let (text, _) = with_solver("page-turn", keys);
     let scene = Scene::parse(&text).expect("checks");
     assert_eq!(scene.precision(), Precision::F32);
@@ -44,6 +44,7 @@ fn every_dog_key_reaches_the_book_settings() {
     assert_eq!(s.solver.tolerance, 1e-5);
     assert!(s.solver.constraint_hessian && !defaults.solver.constraint_hessian);
     assert_eq!(s.collision_rounds, 5);
+    assert_eq!(s.solver.krylov_restart, 4);
     assert_eq!((s.max_corrections, defaults.max_corrections), (0, 3));
     // At one step per frame the step counts are the book's own.
     assert_eq!(s.merge_frames, defaults.merge_frames);
@@ -126,6 +127,9 @@ fn a_key_out_of_range_is_refused_at_its_value() {
     for n in ["collision_rounds = 0", "collision_rounds = 17"] {
         refused_at_value("page-turn", n, "between 1 and 16");
     }
+    for n in ["krylov_restart = 0", "krylov_restart = 51"] {
+        refused_at_value("page-turn", n, "between 1 and 50");
+    }
     refused_at_value("page-turn", "time_step = 0.02", "at most one frame");
     refused_at_value("mass-spring-turn", "time_step = 0.05", "at most one frame");
     refused_at_value("page-turn", "time_step = 1e308", "at most one frame");
@@ -145,6 +149,7 @@ fn a_key_for_another_model_is_refused_at_its_value() {
         "newton_tolerance = 1e-6",
         "constraint_hessian = true",
         "collision_rounds = 2",
+        "krylov_restart = 3",
         "projection = true",
     ];
     for key in dog_only {

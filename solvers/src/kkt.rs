@@ -31,8 +31,8 @@ pub struct Refinement<T> {
 ///
 /// Owns the pattern, the symbolic analysis, the factor (sizes in their docs), the
 /// upper-triangle values (`nnz` of the pattern) and five work vectors of the matrix order
-/// $n$; [`Ordering::AmdQuasiDefinite`] adds its GMRES workspace ([`Gmres`], 12 vectors of
-/// order $n$); [`Kkt::set_equilibration`] adds the scaling's three buffers of order $n$ (the
+/// $n$; [`Ordering::AmdQuasiDefinite`] adds its GMRES workspace ([`Gmres`], $m + 2$ vectors
+/// of order $n$ for restart length $m$, [`Kkt::set_krylov_restart`]); [`Kkt::set_equilibration`] adds the scaling's three buffers of order $n$ (the
 /// scaled values are not stored: the factorization scales each entry as it reads it). Everything is allocated at setup ([`Kkt::new`], [`Kkt::set_equilibration`]);
 /// factorizing and solving allocate nothing (on one thread: a two-thread factorization,
 /// [`Kkt::with_parallelism`], spawns a scoped thread). The factor is made for this very analysis, so the two always pair.
@@ -59,6 +59,8 @@ pub struct Kkt<T> {
     factorizations: u64,
     /// The Krylov refinement of [`Ordering::AmdQuasiDefinite`]; plain refinement without.
     krylov: Option<Gmres<T>>,
+    /// Its restart length ([`Kkt::set_krylov_restart`]).
+    krylov_restart: usize,
 }
 
 /// $K$ and its (regularized) factor as the operator and preconditioner of GMRES.
@@ -88,6 +90,18 @@ impl<T: Real> Kkt<T> {
         ordering: Ordering,
         parallelism: Parallelism,
     ) -> Self {
+        Self::with_krylov_restart(pattern, ordering, parallelism, QUASI_DEFINITE_RESTART)
+    }
+
+    /// [`Kkt::with_parallelism`] with a GMRES of restart length `krylov_restart` (at least
+    /// 1) under [`Ordering::AmdQuasiDefinite`], allocated at that length only.
+    #[must_use]
+    pub fn with_krylov_restart(
+        pattern: KktPattern,
+        ordering: Ordering,
+        parallelism: Parallelism,
+        krylov_restart: usize,
+    ) -> Self {
         let symbolic = Symbolic::empty();
         let mut kkt = Self {
             factor: Ldlt::new(&symbolic),
@@ -102,6 +116,7 @@ impl<T: Real> Kkt<T> {
             previous: Vec::new(),
             factorizations: 0,
             krylov: None,
+            krylov_restart: krylov_restart.max(1),
         };
         kkt.reanalyse(ordering, parallelism);
         kkt
@@ -143,9 +158,19 @@ impl<T: Real> Kkt<T> {
             e.reset(n);
         }
         match (&mut self.krylov, quasi_definite) {
-            (Some(gmres), true) => gmres.reset(n, QUASI_DEFINITE_RESTART),
-            (None, true) => self.krylov = Some(Gmres::new(n, QUASI_DEFINITE_RESTART)),
+            (Some(gmres), true) => gmres.reset(n, self.krylov_restart),
+            (None, true) => self.krylov = Some(Gmres::new(n, self.krylov_restart)),
             (_, false) => self.krylov = None,
+        }
+    }
+
+    /// Sets the restart length of [`Ordering::AmdQuasiDefinite`]'s GMRES (at least 1): its
+    /// basis holds `krylov_restart + 1` vectors of the order. Allocates when it grows.
+    pub fn set_krylov_restart(&mut self, krylov_restart: usize) {
+        self.krylov_restart = krylov_restart.max(1);
+        let n = self.pattern.order();
+        if let Some(gmres) = &mut self.krylov {
+            gmres.reset(n, self.krylov_restart);
         }
     }
 

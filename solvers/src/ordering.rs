@@ -130,7 +130,8 @@ pub enum Ordering {
 /// $2 \cdot 10^{-2}$ raises the DOG residual to 1e-3).
 pub const QUASI_DEFINITE_SHIFT: f64 = 1e-2;
 
-/// Restart length of [`Ordering::AmdQuasiDefinite`]'s GMRES.
+/// Restart length of [`Ordering::AmdQuasiDefinite`]'s GMRES unless set otherwise
+/// ([`crate::settings::Settings::krylov_restart`], [`crate::Kkt::set_krylov_restart`]).
 pub const QUASI_DEFINITE_RESTART: usize = 10;
 
 /// The permutation `perm[new] = old` of `ordering` on `pattern`.

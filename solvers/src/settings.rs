@@ -74,6 +74,14 @@ pub struct Settings<T: Real> {
     /// Most iterative-refinement steps per solve, at most 100. Default 10 (refinement stops
     /// earlier at `refinement_tolerance` or when the residual stops falling).
     pub refinement_steps: u32,
+    /// Restart length $m$ of the refinement's GMRES under [`Ordering::AmdQuasiDefinite`]
+    /// ([`crate::gmres`]): the Krylov basis holds $m + 1$ vectors of the KKT order, the
+    /// largest buffer a solver owns after its factor. A solve whose cycles need more
+    /// iterations restarts from the better iterate (it converges, more slowly). From 1 to
+    /// 50. Default 10: the default book's `f32` page turn needs at most 6 (203 cycles, 119
+    /// of them 2 long); the microcontroller book's at most 2, and it takes 3
+    /// (`folio_book::BookSettings::microcontroller`). Unused in other orderings.
+    pub krylov_restart: u32,
     /// Refinement stops at this relative residual $\lVert Kz - b\rVert_\infty/\lVert b\rVert_\infty$.
     /// Finite, $\ge 0$. Default $\varepsilon^{3/4}$ ($1.8 \cdot 10^{-12}$ in `f64`,
     /// $6.4 \cdot 10^{-6}$ in `f32`), which keeps Newton's quadratic convergence over several
@@ -173,6 +181,7 @@ impl<T: Real> Default for Settings<T> {
             pivot_epsilon: T::from_f64(1000.0) * T::EPSILON,
             regularization: sqrt_eps,
             refinement_steps: 10,
+            krylov_restart: crate::ordering::QUASI_DEFINITE_RESTART as u32,
             refinement_tolerance: sqrt_eps * folio_kernels::math::sqrt(sqrt_eps),
             projection_damping: if T::EPSILON.to_f64() < 1e-10 {
                 T::ZERO
@@ -218,6 +227,9 @@ impl<T: Real> Settings<T> {
         }
         if self.refinement_steps > 100 {
             return bad("refinement_steps", "at most 100");
+        }
+        if !(1..=50).contains(&self.krylov_restart) {
+            return bad("krylov_restart", "from 1 to 50");
         }
         if !(self.refinement_tolerance.is_finite() && self.refinement_tolerance >= T::ZERO) {
             return bad("refinement_tolerance", "finite and >= 0");

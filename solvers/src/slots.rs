@@ -95,9 +95,8 @@ impl Slots {
         }
     }
 
-    /// Slot `k` as a `u32`, [`NONE`] for no slot (for tests; the scatters read the map in
+    /// Slot `k` as a `u32`, [`NONE`] for no slot (for checks; the scatters read the map in
     /// its own width).
-    #[cfg(test)]
     #[must_use]
     pub fn get(&self, k: usize) -> u32 {
         let s = match self {

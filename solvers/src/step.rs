@@ -67,6 +67,8 @@ struct Workspace<T: Real> {
     equilibrate: bool,
     /// [`Settings::parallelism`] as the KKT was set up.
     parallelism: Parallelism,
+    /// [`Settings::krylov_restart`] as the KKT was set up.
+    krylov_restart: u32,
     kkt: Kkt<T>,
     /// Right-hand side, then product scratch, then solution: `dofs + rows` each.
     rhs: Vec<T>,
@@ -113,13 +115,19 @@ impl<T: Real> Workspace<T> {
         nodes: usize,
         projects: bool,
     ) -> Self {
-        let mut kkt = Kkt::with_parallelism(pattern, s.ordering, s.parallelism);
+        let mut kkt = Kkt::with_krylov_restart(
+            pattern,
+            s.ordering,
+            s.parallelism,
+            s.krylov_restart as usize,
+        );
         kkt.set_equilibration(s.equilibrate);
         let mut work = Self {
             version,
             ordering: s.ordering,
             equilibrate: s.equilibrate,
             parallelism: s.parallelism,
+            krylov_restart: s.krylov_restart,
             kkt,
             rhs: Vec::new(),
             product: Vec::new(),
@@ -167,11 +175,15 @@ impl<T: Real> Workspace<T> {
         if self.equilibrate != s.equilibrate {
             self.kkt.set_equilibration(s.equilibrate);
         }
+        if self.krylov_restart != s.krylov_restart {
+            self.kkt.set_krylov_restart(s.krylov_restart as usize);
+        }
         self.kkt.reanalyse(s.ordering, s.parallelism);
         self.version = model.topology_version();
         self.ordering = s.ordering;
         self.equilibrate = s.equilibrate;
         self.parallelism = s.parallelism;
+        self.krylov_restart = s.krylov_restart;
         self.size_vectors(model.node_count(), projects);
         Ok(())
     }
@@ -336,6 +348,7 @@ impl<T: Real> Solver<T> {
                 && w.kkt.pattern.with_constraint_hessian == s.constraint_hessian
                 && w.equilibrate == s.equilibrate
                 && w.parallelism == s.parallelism
+                && w.krylov_restart == s.krylov_restart
             {
                 return Ok(false);
             }

@@ -157,7 +157,7 @@ fn topology_change_reruns_the_analysis_and_nothing_else_does() {
 
 #[test]
 fn bad_settings_get_typed_errors() {
-    let cases: [(Settings<f64>, &str); 5] = [
+    let cases: [(Settings<f64>, &str); 7] = [
         (
             Settings {
                 time_step: 0.0,
@@ -192,6 +192,20 @@ fn bad_settings_get_typed_errors() {
                 ..Settings::default()
             },
             "tolerance",
+        ),
+        (
+            Settings {
+                krylov_restart: 0,
+                ..Settings::default()
+            },
+            "krylov_restart",
+        ),
+        (
+            Settings {
+                krylov_restart: 51,
+                ..Settings::default()
+            },
+            "krylov_restart",
         ),
     ];
     for (settings, name) in cases {
