@@ -44,7 +44,7 @@ use run::Report;
 /// Counts each thread's allocations, so that a run can report the allocations of its steps
 /// ([`run::FrameRecord::allocations`]).
 #[global_allocator]
-static ALLOCATOR: folio_tests::counting::Counting = folio_tests::counting::Counting;
+static ALLOCATOR: folio_counting::Counting = folio_counting::Counting;
 
 const USAGE: &str = "usage: folio [run SCENE_OR_NAME [--out DIR] | list | check SCENE... | atlas SCENE_OR_NAME [--budget MS] [--out DIR] | trace SCENE_OR_NAME]";
 

@@ -221,7 +221,7 @@ pub struct Report {
 }
 
 /// Measures a frame's steps: their wall time and the allocations the running thread made
-/// (counted by the `folio` binary's global allocator, `folio_tests::counting`).
+/// (counted by the `folio` binary's global allocator, `folio_counting`).
 pub(crate) struct Meter {
     started: Instant,
     allocations: usize,
@@ -232,7 +232,7 @@ impl Meter {
     #[must_use]
     pub(crate) fn start() -> Self {
         Self {
-            allocations: folio_tests::counting::allocations(),
+            allocations: folio_counting::allocations(),
             started: Instant::now(),
         }
     }
@@ -241,7 +241,7 @@ impl Meter {
     #[must_use]
     pub(crate) fn stop(self) -> (f64, usize) {
         let ms = self.started.elapsed().as_secs_f64() * 1e3;
-        let allocations = folio_tests::counting::allocations() - self.allocations;
+        let allocations = folio_counting::allocations() - self.allocations;
         (ms, allocations)
     }
 }

@@ -7,7 +7,6 @@
 //! relative for derivatives of ordinary size, absolute below $10^{-2}$ (so that exactly-zero
 //! blocks of linear terms do not divide rounding noise by zero).
 
-pub mod counting;
 pub mod dense_kkt;
 pub mod elastica;
 pub mod fuzz;

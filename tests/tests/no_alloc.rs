@@ -9,7 +9,7 @@ use folio_kernels::Real;
 use folio_solvers::{Model, Settings, Solver, State};
 use folio_tests::models::{Chain, DogSheet};
 
-use folio_tests::counting::{Counting, allocations};
+use folio_counting::{Counting, allocations};
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;

@@ -17,7 +17,7 @@ use folio_kernels::{Real, Vec3Ops};
 use folio_tearing::sheet::{HingeBending, SheetEffects, SheetSettings, TearingSheet};
 use folio_tearing::{Estimator, TearSettings, TipRemesh};
 
-use folio_tests::counting::{Counting, allocations};
+use folio_counting::{Counting, allocations};
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;

@@ -1,13 +1,14 @@
 //! A counting global allocator for the no-allocation tests (DESIGN.md: "setup allocates;
-//! stepping does not"). A test binary installs it with
-//! `#[global_allocator] static GLOBAL: Counting = Counting;` and compares [`allocations`]
-//! before and after the code under test.
+//! stepping does not") and for `folio run`, which reports the allocations of every step. A
+//! binary installs it with `#[global_allocator] static GLOBAL: Counting = Counting;` and
+//! compares [`allocations`] before and after the code it watches. A crate of its own so that
+//! the command links no test code (issue 41).
 //!
 //! It counts per thread: the test harness's own threads (its "has been running for over 60
 //! seconds" notice under a slow emulator, output capture) allocate while a test runs, and
 //! counted globally they made the book's page turn report 2 allocations under qemu-aarch64
 //! and the sheet's frame a few in about one run in thirty.
-// A global allocator is an `unsafe impl`; this module is the only place that needs one.
+// A global allocator is an `unsafe impl`; this crate is the only place that needs one.
 #![allow(unsafe_code)]
 
 use core::alloc::{GlobalAlloc, Layout};
