@@ -11,33 +11,17 @@
 //! its own bounds in `[expect]` (`max_stretch`, `dog_residual_max`, `penetration_max`,
 //! `failed_steps`).
 
-use serde::Serialize;
-
 use folio_book::BookParams;
 use folio_scene::number::{short, show};
 use folio_scene::scene::Scene;
 
-use crate::run::FrameRecord;
+use crate::report::{Bounds, FirstBad, FrameRecord, Health};
 
 /// Default bound on a frame's max edge stretch: 10 % (paper barely stretches).
 pub const MAX_STRETCH: f64 = 0.10;
 
 /// Default bound on a frame's DOG residual (page units).
 pub const DOG_RESIDUAL: f64 = 1e-2;
-
-/// The bounds every frame is held to (`report.json`'s `summary.health.bounds`).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct Bounds {
-    /// Largest max edge stretch of a frame.
-    pub max_stretch: f64,
-    /// Largest DOG residual of a frame (page units).
-    pub dog_residual: f64,
-    /// Deepest penetration into a block (page units); `None` when collisions are not
-    /// simulated.
-    pub penetration: Option<f64>,
-    /// Frames whose step may fail or be refused.
-    pub failed_steps: usize,
-}
 
 impl Bounds {
     /// The bounds of `scene`: its `[expect]`, else the defaults (module docs); the default
@@ -59,48 +43,6 @@ impl Bounds {
                 .then(|| e.penetration_max.unwrap_or(thickness)),
             failed_steps: e.failed_steps.unwrap_or(0),
         }
-    }
-}
-
-/// The first bad frame and why.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct FirstBad {
-    /// Its index.
-    pub frame: u32,
-    /// Its problems, joined.
-    pub why: String,
-}
-
-/// What the frames show, counted (`report.json`'s `summary.health`).
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Health {
-    /// The bounds the frames were held to.
-    pub bounds: Bounds,
-    /// Frames with at least one problem.
-    pub bad_frames: usize,
-    /// Frames whose step failed or was refused (allowed or not).
-    pub failed_steps: usize,
-    /// Frames whose step reported non-finite input.
-    pub nonfinite_input_frames: usize,
-    /// Frames whose state holds a non-finite coordinate.
-    pub nonfinite_state_frames: usize,
-    /// Inputs that did nothing (a grab that missed the page, a refused drag).
-    pub input_problems: usize,
-    /// Frames above the stretch bound.
-    pub stretch_over: usize,
-    /// Frames above the DOG residual bound.
-    pub dog_residual_over: usize,
-    /// Frames above the penetration bound.
-    pub penetration_over: usize,
-    /// The first bad frame, if any.
-    pub first_bad: Option<FirstBad>,
-}
-
-impl Health {
-    /// `true` when no frame is bad.
-    #[must_use]
-    pub fn good(&self) -> bool {
-        self.bad_frames == 0
     }
 }
 

@@ -19,17 +19,21 @@
 extern crate alloc;
 
 mod atlas;
+mod error;
 mod exit;
 mod export;
 mod health;
+mod meter;
 mod obj;
 mod outputs;
 mod progress;
 mod render;
+mod report;
 mod run;
 mod shape;
 mod sheet_run;
 mod sheet_view;
+mod summary;
 mod timeline;
 
 use std::path::{Path, PathBuf};
@@ -39,10 +43,10 @@ use std::time::Instant;
 use folio_scene::builtin;
 use folio_scene::number::show;
 use folio_scene::scene::Scene;
-use run::Report;
+use report::Report;
 
 /// Counts each thread's allocations, so that a run can report the allocations of its steps
-/// ([`run::FrameRecord::allocations`]).
+/// ([`report::FrameRecord::allocations`]).
 #[global_allocator]
 static ALLOCATOR: folio_counting::Counting = folio_counting::Counting;
 

@@ -13,9 +13,11 @@ use folio_geometry::mesh::TriMesh;
 use folio_tearing::Side;
 use folio_tearing::sheet::TearingSheet;
 
+use crate::error::RunError;
 use crate::export::Animation;
 use crate::render::{self, ContactSheet, SheetSettings, book_bounds};
-use crate::run::{Report, RunError, Shape};
+use crate::report::Report;
+use crate::shape::Shape;
 use crate::sheet_view::{
     Cutout, SHEET_EYE, SHEET_LIGHT, edge_bounds, mesh_bounds, render_mesh, sheet_bounds, tear_png,
 };

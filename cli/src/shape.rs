@@ -9,7 +9,7 @@ use folio_kernels::{Real, Vec3Ops};
 use folio_pages::PageModel;
 use folio_tearing::sheet::TearingSheet;
 
-use crate::run::{RunError, fail};
+use crate::error::{RunError, fail};
 
 /// The render grid page models are measured on (24 x 34 quads, half a page unit).
 pub const RENDER_QUADS: (usize, usize) = (24, 34);

@@ -12,59 +12,14 @@
 use folio_geometry::SheetMesh;
 use folio_geometry::sheet::NONE;
 use folio_tearing::{Edit, Kind, Propagation};
-use serde::Serialize;
 
 use folio_scene::clock::steps_in_frame;
 use folio_scene::scene::Scene;
 
-use crate::run::{FrameRecord, Report, RunError, Shape, fail};
-
-/// One propagation of a tear (`report.json`'s `tearing.propagations`).
-#[derive(Clone, Debug, Serialize)]
-pub struct PropagationRecord {
-    /// The frame it happened in.
-    pub frame: u32,
-    /// The tear (index into `tearing.tears`).
-    pub tear: usize,
-    /// Why its start was a potential tearing point: `tip`, `finger`, `junction`,
-    /// `inward-angle`.
-    pub kind: &'static str,
-    /// The old tip (pattern, sheet units).
-    pub from: [f64; 2],
-    /// The new tip.
-    pub to: [f64; 2],
-    /// The release rate $E_r$ (eq. 6).
-    pub release_rate: f64,
-    /// The fracture energy $E_f$ (eq. 3) it beat.
-    pub fracture_energy: f64,
-    /// The mesh edit: `moved` (the tip slid), `split` (two lips), `separated` (a piece came
-    /// off).
-    pub edit: &'static str,
-}
-
-/// One tear at the end of the run (`report.json`'s `tearing.tears`).
-#[derive(Clone, Debug, Serialize)]
-pub struct TearRecord {
-    /// The tear it branched from.
-    pub parent: Option<usize>,
-    /// Still open (it has a tip; a tear that reached the border has none).
-    pub open: bool,
-    /// Length of its path in the pattern (sheet units).
-    pub length: f64,
-    /// Its path in the pattern from the start to the tip.
-    pub path: Vec<[f64; 2]>,
-}
-
-/// The tears' log of a sheet run.
-#[derive(Clone, Debug, Serialize)]
-pub struct TearingLog {
-    /// The alpha textures' size in pixels (width, height).
-    pub texture_size: [u32; 2],
-    /// Every propagation in order.
-    pub propagations: Vec<PropagationRecord>,
-    /// Every tear.
-    pub tears: Vec<TearRecord>,
-}
+use crate::error::{RunError, fail};
+use crate::meter::Meter;
+use crate::report::{FrameRecord, PropagationRecord, Report, TearRecord, TearingLog};
+use crate::shape::Shape;
 
 /// The name of a potential tearing point's kind in reports and scenes.
 #[must_use]
@@ -157,7 +112,7 @@ pub fn run(
         let before = sheet.propagations().len();
         let (wanted, mut steps) = (steps_in_frame(frame, h), 0);
         let (mut propagated, mut refused, mut flips, mut bad_loads) = (0, 0, 0, 0);
-        let meter = crate::run::Meter::start();
+        let meter = Meter::start();
         let mut step = sheet.step();
         loop {
             steps += 1;

@@ -4,7 +4,9 @@
 use folio_geometry::QuadGrid;
 use folio_scene::scene::Scene;
 
-use crate::run::{self, Report, RunError};
+use crate::error::RunError;
+use crate::report::Report;
+use crate::run;
 
 /// The material points every variant is sampled at: the nodes of a 12 x 16 quad grid over
 /// the page (13 x 17 points; node $(12, 8)$ is the fore-edge's middle, the page tip).
