@@ -6,6 +6,10 @@
 
 use alloc::vec::Vec;
 
+/// No index: an eliminated coordinate, a dropped entry, a missing parent, as a `u32`
+/// ([`crate::pattern::NONE`] re-exports it).
+pub const NONE: u32 = u32::MAX;
+
 /// An unsigned index stored in the factor's structure ([`u16`] or [`u32`]; sealed).
 pub trait Index: Copy + Ord + core::fmt::Debug + sealed::Sealed {
     /// Largest value this type holds.

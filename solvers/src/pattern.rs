@@ -20,8 +20,9 @@ use crate::model::{ConstraintSet, Model, PotentialSet, TermVisitor};
 use crate::room::{Room, refill, scaled};
 use crate::slots::Slots;
 
-/// Marks an eliminated coordinate or a dropped (lower-triangle) entry in the maps.
-pub const NONE: u32 = u32::MAX;
+/// Marks an eliminated coordinate or a dropped (lower-triangle) entry in the maps (defined
+/// with the index types, [`crate::index::NONE`]).
+pub use crate::index::NONE;
 
 /// Where one term family's maps start.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -7,12 +7,11 @@
 //! is chosen at each build from the number of stored entries, as
 //! [`crate::symbolic::Symbolic`] chooses its own; a map reserved in one width and rebuilt
 //! in the other allocates. The eliminated or dropped entry
-//! ([`crate::pattern::NONE`] while the maps are built) is the width's largest value.
+//! ([`crate::index::NONE`] while the maps are built) is the width's largest value.
 
 use alloc::vec::Vec;
 
-use crate::index::Index;
-use crate::pattern::NONE;
+use crate::index::{Index, NONE};
 use crate::room::{Room, scaled};
 
 /// One scatter map (module docs).
