@@ -5,7 +5,7 @@ use folio_geometry::QuadGrid;
 use folio_geometry::mesh::{MeshError, TriMesh};
 use folio_kernels::{Real, Vec3Ops};
 
-use crate::step::FolioStepReport;
+use crate::step_report::FolioStepReport;
 
 /// A [`Book`] in `f32` or `f64` (`FolioBookSettings::precision`).
 #[derive(Debug)]

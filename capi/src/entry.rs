@@ -6,7 +6,7 @@ use folio_geometry::mesh::TriMesh;
 use crate::any_book::AnyBook;
 use crate::failure::Failure;
 use crate::status::FolioStatus;
-use crate::step::FolioStepReport;
+use crate::step_report::FolioStepReport;
 
 /// A live book of the registry.
 #[derive(Debug)]

@@ -52,7 +52,8 @@ extern crate alloc;
 mod version;
 // FolioStatus and folio_status_name.
 mod status;
-// The thread's last error and folio_last_error_message.
+// The thread's last error, and folio_last_error_message.
+mod error_message;
 mod last_error;
 // FolioBookSettings, precisions, effect flags.
 mod settings;
@@ -66,8 +67,9 @@ mod create;
 mod scene;
 // folio_book_grab, folio_book_drag, folio_book_release.
 mod input;
-// FolioStepReport and folio_book_step.
+// FolioStepReport, and folio_book_step.
 mod step;
+mod step_report;
 // folio_book_mesh_size, folio_book_mesh_copy.
 mod mesh;
 // The page's nodes and the held node.
@@ -81,9 +83,9 @@ mod pointer;
 mod registry;
 
 pub use create::{folio_book_create, folio_book_destroy};
+pub use error_message::folio_last_error_message;
 pub use handle::FolioBookHandle;
 pub use input::{folio_book_drag, folio_book_grab, folio_book_release};
-pub use last_error::folio_last_error_message;
 pub use mesh::{folio_book_mesh_copy, folio_book_mesh_size};
 pub use nodes::{folio_book_held_position, folio_book_page_grid, folio_book_page_positions};
 pub use scene::folio_book_create_from_scene;
@@ -94,5 +96,6 @@ pub use settings::{
 };
 pub use side::{FOLIO_SIDE_LEFT, FOLIO_SIDE_NONE, FOLIO_SIDE_RIGHT, FolioSide};
 pub use status::{FolioStatus, folio_status_name};
-pub use step::{FolioPhase, FolioStepReport, FolioStepStatus, folio_book_step};
+pub use step::folio_book_step;
+pub use step_report::{FolioPhase, FolioStepReport, FolioStepStatus};
 pub use version::{FOLIO_API_VERSION, folio_api_version};
