@@ -19,6 +19,7 @@ pub mod edit;
 mod error;
 mod mesh;
 pub mod quality;
+mod rollback;
 mod scratch;
 
 pub use cones::{ConeLayer, ConeSettings, Region};

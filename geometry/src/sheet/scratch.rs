@@ -1,19 +1,17 @@
-//! [`Scratch`]: the working buffers of a [`SheetMesh`]'s edits and checks, kept between
-//! them so that an edit allocates nothing once [`SheetMesh::reserve`] has made room (a tear
+//! [`Scratch`]: the working buffers of a `SheetMesh`'s edits and checks, kept between
+//! them so that an edit allocates nothing once `SheetMesh::reserve` has made room (a tear
 //! edits the mesh inside a frame, and frames do not allocate: DESIGN.md).
 //!
 //! A clone of a mesh starts with empty buffers: they hold nothing between two calls, so only
-//! their capacity is lost, and a cloned mesh is set up again with [`SheetMesh::reserve`].
+//! their capacity is lost, and a cloned mesh is set up again with `SheetMesh::reserve`.
 
 use alloc::vec::Vec;
 
 use folio_kernels::Real;
 
-use super::mesh::SheetMesh;
-
 /// A copy of the mesh's arrays and versions: before the running edit (restored when the
 /// edited mesh fails its check), or at the caller's checkpoint
-/// ([`SheetMesh::checkpoint`]).
+/// (`SheetMesh::checkpoint`).
 #[derive(Debug)]
 pub(crate) struct Backup<T: Real> {
     pub topology_version: u64,
@@ -36,8 +34,8 @@ pub(crate) struct Scratch<T: Real> {
     pub keys: Vec<(u32, u32, u32)>,
     /// Triangles per vertex: the manifold check's count.
     pub seen: Vec<usize>,
-    /// A list of triangles: those near a vertex ([`SheetMesh::improve_around`]), the fans
-    /// a cut moves to the new vertices ([`SheetMesh::cut_edge`]).
+    /// A list of triangles: those near a vertex (`SheetMesh::improve_around`), the fans
+    /// a cut moves to the new vertices (`SheetMesh::cut_edge`).
     pub triangles: Vec<usize>,
 }
 
@@ -70,7 +68,7 @@ impl<T: Real> Default for Scratch<T> {
 
 impl<T: Real> Scratch<T> {
     /// The backup `slot`.
-    fn slot(&mut self, slot: Slot) -> &mut Backup<T> {
+    pub(super) fn slot(&mut self, slot: Slot) -> &mut Backup<T> {
         match slot {
             Slot::Edit => &mut self.backup,
             Slot::Checkpoint => &mut self.checkpoint,
@@ -87,13 +85,13 @@ impl<T: Real> Clone for Scratch<T> {
 
 /// The arrays a mesh and each of its backups hold, borrowed: what is done to all of them
 /// alike is written once.
-struct Arrays<'a, T: Real> {
-    pattern: &'a mut Vec<[T; 2]>,
-    positions: &'a mut Vec<T::Vec3>,
-    velocities: &'a mut Vec<T::Vec3>,
-    triangles: &'a mut Vec<[u32; 3]>,
-    twins: &'a mut Vec<u32>,
-    outgoing: &'a mut Vec<u32>,
+pub(super) struct Arrays<'a, T: Real> {
+    pub pattern: &'a mut Vec<[T; 2]>,
+    pub positions: &'a mut Vec<T::Vec3>,
+    pub velocities: &'a mut Vec<T::Vec3>,
+    pub triangles: &'a mut Vec<[u32; 3]>,
+    pub twins: &'a mut Vec<u32>,
+    pub outgoing: &'a mut Vec<u32>,
 }
 
 /// The [`Arrays`] of a mesh or a backup, which name their arrays alike.
@@ -109,10 +107,11 @@ macro_rules! arrays_of {
         }
     };
 }
+pub(super) use arrays_of;
 
 impl<T: Real> Arrays<'_, T> {
     /// Room for a mesh of `v` vertices and `t` triangles.
-    fn reserve(self, v: usize, t: usize) {
+    pub(super) fn reserve(self, v: usize, t: usize) {
         room(self.pattern, v);
         room(self.positions, v);
         room(self.velocities, v);
@@ -123,7 +122,7 @@ impl<T: Real> Arrays<'_, T> {
 
     /// Copies every array between the mesh's (`self`) and a backup's (`kept`), the `way`
     /// given.
-    fn copy(self, kept: Arrays<'_, T>, way: Way) {
+    pub(super) fn copy(self, kept: Arrays<'_, T>, way: Way) {
         copy_between(self.pattern, kept.pattern, way);
         copy_between(self.positions, kept.positions, way);
         copy_between(self.velocities, kept.velocities, way);
@@ -135,14 +134,14 @@ impl<T: Real> Arrays<'_, T> {
 
 impl<T: Real> Backup<T> {
     /// The backup's arrays.
-    fn arrays(&mut self) -> Arrays<'_, T> {
+    pub(super) fn arrays(&mut self) -> Arrays<'_, T> {
         arrays_of!(self)
     }
 }
 
 /// Which of the scratch's backups a copy uses.
 #[derive(Clone, Copy, Debug)]
-enum Slot {
+pub(super) enum Slot {
     /// The running edit's backup.
     Edit,
     /// The caller's checkpoint.
@@ -151,7 +150,7 @@ enum Slot {
 
 /// Which way a copy runs.
 #[derive(Clone, Copy, Debug)]
-enum Way {
+pub(super) enum Way {
     /// From the mesh into the backup.
     Save,
     /// From the backup into the mesh.
@@ -175,70 +174,4 @@ pub(crate) fn copy_into<E: Copy>(to: &mut Vec<E>, from: &[E]) {
 /// Capacity for `total` elements in `v`.
 pub(crate) fn room<E>(v: &mut Vec<E>, total: usize) {
     v.reserve(total.saturating_sub(v.len()));
-}
-
-/// Entries reserved for a list of triangles: a longer list makes its buffer grow once.
-const TRIANGLE_LIST_ROOM: usize = 256;
-
-impl<T: Real> SheetMesh<T> {
-    /// Makes room for a mesh of `vertices` vertices and `triangles` triangles in all, in the
-    /// mesh and in the buffers its edits work in (module docs): edits that keep the mesh
-    /// within this room allocate nothing.
-    pub fn reserve(&mut self, vertices: usize, triangles: usize) {
-        let (v, t) = (vertices, triangles);
-        self.arrays().reserve(v, t);
-        let s = &mut self.scratch;
-        s.backup.arrays().reserve(v, t);
-        s.checkpoint.arrays().reserve(v, t);
-        room(&mut s.keys, 3 * t);
-        room(&mut s.seen, v);
-        room(&mut s.triangles, TRIANGLE_LIST_ROOM);
-    }
-
-    /// Remembers the sheet as it is, for [`SheetMesh::rollback`]: a change made of several
-    /// edits, where a later one may refuse after an earlier one took. Within the room made
-    /// by [`SheetMesh::reserve`] it allocates nothing.
-    pub fn checkpoint(&mut self) {
-        self.copy(Slot::Checkpoint, Way::Save);
-    }
-
-    /// Puts the sheet back as it was at the last [`SheetMesh::checkpoint`] (or as it was
-    /// made, with no checkpoint taken: nothing is restored then).
-    pub fn rollback(&mut self) {
-        if !self.scratch.checkpoint.pattern.is_empty() {
-            self.copy(Slot::Checkpoint, Way::Restore);
-        }
-    }
-
-    /// Copies the arrays into the edit backup.
-    pub(crate) fn save(&mut self) {
-        self.copy(Slot::Edit, Way::Save);
-    }
-
-    /// Restores the arrays from the edit backup.
-    pub(crate) fn restore(&mut self) {
-        self.copy(Slot::Edit, Way::Restore);
-    }
-
-    /// Copies the arrays and versions between the mesh and the backup `slot`, the `way`
-    /// given.
-    fn copy(&mut self, slot: Slot, way: Way) {
-        // Taken out (an empty backup allocates nothing) so that the mesh can lend its arrays.
-        let mut b = core::mem::take(self.scratch.slot(slot));
-        match way {
-            Way::Save => {
-                (b.topology_version, b.shape_version) = (self.topology_version, self.shape_version)
-            }
-            Way::Restore => {
-                (self.topology_version, self.shape_version) = (b.topology_version, b.shape_version)
-            }
-        }
-        self.arrays().copy(b.arrays(), way);
-        *self.scratch.slot(slot) = b;
-    }
-
-    /// The mesh's arrays.
-    fn arrays(&mut self) -> Arrays<'_, T> {
-        arrays_of!(self)
-    }
 }
