@@ -5,23 +5,8 @@
 use folio_kernels::Real;
 
 use super::bookmark::{Flip, History};
+use super::outcome::BookmarkOutcome;
 use super::simulation::Book;
-
-/// How a finger-bookmarking request ended. Only `Started` changes the book.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum BookmarkOutcome {
-    /// A page started its flight.
-    Started,
-    /// Nothing is held.
-    NotHeld,
-    /// No page left to add (the block is empty) or to remove (one page held).
-    NoPage,
-    /// `max_flips` pages are already in flight.
-    Busy,
-    /// Finger-bookmarking is not among the book's effects.
-    Disabled,
-}
 
 impl<T: Real> Book<T> {
     /// Moves every flying page one step along its flight; drops the ones that arrived.

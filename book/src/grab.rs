@@ -10,6 +10,7 @@ use folio_kernels::{Real, Vec3Ops, math};
 
 use super::error::BookError;
 use super::interaction::{Ray, Tent};
+use super::outcome::{DragOutcome, GrabOutcome};
 use super::simulation::{ActivePage, Book, Hold};
 
 /// The node of `nodes` with the smallest `distance` (NaN counts as farthest); `None` only
@@ -29,35 +30,6 @@ fn nearest(nodes: &[usize], distance: impl Fn(usize) -> f64) -> Option<usize> {
 /// `true` when every coordinate of `v` is finite.
 fn vec_finite<T: Real>(v: T::Vec3) -> bool {
     v.x().is_finite() && v.y().is_finite() && v.z().is_finite()
-}
-
-/// How a grab ended. Only `Grabbed` changes the book.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum GrabOutcome {
-    /// The page node `node` (index into the page grid) is held; the page came from `side`.
-    Grabbed {
-        /// The block the active page came from.
-        side: BlockSide,
-        /// Grid index of the held node.
-        node: usize,
-    },
-    /// The ray does not hit the book.
-    Missed,
-    /// The block hit holds fewer pages than asked for.
-    NotEnoughPages,
-}
-
-/// How a drag ended.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum DragOutcome {
-    /// The target moved.
-    Moved,
-    /// Nothing is held.
-    NotHeld,
-    /// The ray does not meet the drag plane (parallel or behind the camera); target kept.
-    Missed,
 }
 
 impl<T: Real> Book<T> {

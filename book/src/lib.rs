@@ -41,6 +41,7 @@ pub mod layout;
 mod merge;
 pub mod mesh;
 pub mod model;
+mod outcome;
 pub mod paper;
 pub mod quadrature;
 pub mod script;

@@ -25,8 +25,7 @@ use folio_solvers::model::Model;
 use folio_solvers::report::{StepReport, StepStatus};
 use folio_solvers::step::{Correction, Solver, State};
 
-pub use crate::flip::BookmarkOutcome;
-pub use crate::grab::{DragOutcome, GrabOutcome};
+pub use crate::outcome::{BookmarkOutcome, DragOutcome, GrabOutcome, InputOutcome};
 
 /// Unknowns and constraint rows of `solver`'s analysed KKT pattern.
 fn pattern_size<T: Real>(solver: &Solver<T>) -> (usize, usize) {
@@ -223,20 +222,6 @@ pub struct Book<T: Real> {
     /// Consecutive steps at rest with every block and cover node slower than
     /// [`BookSettings::sleep_speed`]; the book sleeps from `sleep_frames` on.
     pub(crate) quiet_frames: u32,
-}
-
-/// What an input did.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum InputOutcome {
-    /// A grab.
-    Grab(GrabOutcome),
-    /// A drag.
-    Drag(DragOutcome),
-    /// A release; `true` if something was held.
-    Release(bool),
-    /// A finger-bookmarking request.
-    Bookmark(BookmarkOutcome),
 }
 
 impl<T: Real> BookStepReport<T> {
