@@ -35,13 +35,13 @@
 //!
 //! **Equilibrium.** The page's own integrators on its [`SpringNetwork`]: semi-implicit
 //! Euler ([`folio_pages::spring::explicit`]) at $0.95$ of its stability bound
-//! ([`folio_pages::spring::bending::omega_squared_bound`]) with the particle damping at
+//! ([`folio_pages::spring::SpringSettings::omega_squared_bound`]) with the particle damping at
 //! twice the first bending mode's linear frequency $\omega_1 = 3.516\sqrt{D/(\rho L^4)}$, or
 //! implicit Euler ([`folio_pages::spring::ImplicitStepper`]) at $h = 1/\omega_1$, from the
 //! flat page until no particle moves faster than $10^{-9} L\omega_1$.
 
 use folio_kernels::{Potential, Real, Vec3Ops, math};
-use folio_pages::spring::bending::{self, bend_spring_equivalent};
+use folio_pages::spring::bending::bend_spring_equivalent;
 use folio_pages::spring::{
     ImplicitStepper, Integrator, PhysicalPage, Role, SpringNetwork, SpringPage, SpringSettings,
     explicit,
@@ -106,9 +106,7 @@ impl<T: Real> Clamped<T> {
         settings.substeps = 1;
         settings.damping = T::from_f64(-2.0 * omega1) * settings.particle_mass;
         settings.time_step = T::from_f64(match integrator {
-            Integrator::SemiImplicitEuler => {
-                0.95 * 2.0 / bending::omega_squared_bound(&settings).sqrt()
-            }
+            Integrator::SemiImplicitEuler => 0.95 * 2.0 / settings.omega_squared_bound().sqrt(),
             _ => 1.0 / omega1,
         });
         settings.validate().expect("settings");

@@ -96,8 +96,6 @@ use folio_geometry::QuadGrid;
 use folio_kernels::term::{Blocks, NodeVecs};
 use folio_kernels::{Mat3Ops, Potential, Real, Vec3Ops};
 
-use super::settings::SpringSettings;
-
 /// The rolled page's equivalent bending stiffness of bend springs of stiffness `k` at
 /// curvature `kappa` on the spacings `[h_x, h_z]` with rigid sides (module docs):
 /// $D_{\mathrm{eq}} = k\kappa^2h_x^5/(16h_z)$, zero at $\kappa = 0$.
@@ -245,18 +243,37 @@ impl<T: Real> Potential<T, 1> for SpineClamp<T> {
     }
 }
 
-/// The clamp's terms of `settings` (module docs): `(spine particle, neighbour, w)` per row,
+/// What the flat page's plate term and its stability bound read of the page's settings
+/// (`SpringSettings::flat_page`): the particle grid and its rest spacing (page units), the
+/// spine's clamp, the three spring families' stiffness summed, the plate's $D$ and the
+/// particle masses.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FlatPage {
+    /// The particle grid (across, along).
+    pub grid: QuadGrid,
+    /// Rest spacing `[across, along]` (page units).
+    pub spacing: [f64; 2],
+    /// The spine is fixed and clamped (`fixed_spine` and `clamped_spine`).
+    pub clamped_spine: bool,
+    /// $\sum k$ over stretch, shear and bend springs.
+    pub spring_stiffness: f64,
+    /// The plate's bending stiffness $D$ (0: no plate term).
+    pub plate_stiffness: f64,
+    /// The mass of an inner particle.
+    pub particle_mass: f64,
+    /// Edge and corner particles carry their area's share ([`mass_share`]).
+    pub area_masses: bool,
+}
+
+/// The clamp's terms of `page` (module docs): `(spine particle, neighbour, w)` per row,
 /// none unless the spine is fixed and clamped and the page has two columns or more.
-pub fn spine_clamps<T: Real>(
-    settings: &SpringSettings<T>,
-    mut each: impl FnMut(usize, usize, f64),
-) {
-    let (nx, nz) = (settings.particles_across, settings.particles_along);
-    if !(settings.fixed_spine && settings.clamped_spine) || nx < 2 {
+pub fn spine_clamps(page: &FlatPage, mut each: impl FnMut(usize, usize, f64)) {
+    let QuadGrid { nx, nz } = page.grid;
+    if !page.clamped_spine || nx < 2 {
         return;
     }
-    let [hx, hz] = settings.spacing().map(|h| h.to_f64());
-    let grid = QuadGrid { nx, nz };
+    let [hx, hz] = page.spacing;
+    let grid = page.grid;
     for j in 0..nz {
         let c = if j == 0 || j + 1 == nz { 0.5 } else { 1.0 };
         let area = 0.5 * c * hx * hz;
@@ -269,23 +286,19 @@ pub fn spine_clamps<T: Real>(
 }
 
 /// A Gershgorin bound on the largest $\omega^2$ of the flat page's springs and plate term
-/// over the particle masses of `settings` (validated): for each particle, the springs'
-/// estimate $4\sum k$ of [`super::Integrator::SemiImplicitEuler`] plus the plate term's
-/// absolute Hessian row sums at it, $D\sum a\lvert c_k\rvert\sum_l\lvert c_l\rvert$ over
-/// the stencils that read it, divided by its mass, the largest of them. With equal
-/// masses and no plate term it is the earlier $4\sum k/m$. Allocates one number per particle
-/// (setup only).
+/// over the particle masses of `page` (`SpringSettings::omega_squared_bound` for validated
+/// settings): for each particle, the springs' estimate $4\sum k$ of
+/// [`super::Integrator::SemiImplicitEuler`] plus the plate term's absolute Hessian row sums
+/// at it, $D\sum a\lvert c_k\rvert\sum_l\lvert c_l\rvert$ over the stencils that read it,
+/// divided by its mass, the largest of them. With equal masses and no plate term it is the
+/// earlier $4\sum k/m$. Allocates one number per particle (setup only).
 #[must_use]
-pub fn omega_squared_bound<T: Real>(settings: &SpringSettings<T>) -> f64 {
-    let grid = QuadGrid {
-        nx: settings.particles_across,
-        nz: settings.particles_along,
-    };
-    let spacing = settings.spacing().map(|s| s.to_f64());
+pub fn omega_squared_bound(page: &FlatPage) -> f64 {
+    let grid = page.grid;
     let mut rows = alloc::vec![0.0f64; grid.len()];
-    let d = settings.bending_stiffness.to_f64();
+    let d = page.plate_stiffness;
     if d > 0.0 {
-        plate_stencils(grid, spacing, |stencil| {
+        plate_stencils(grid, page.spacing, |stencil| {
             let (nodes, c, area) = stencil.parts();
             let total: f64 = c.iter().map(|v| v.abs()).sum();
             for (&n, &ca) in nodes.iter().zip(c) {
@@ -295,21 +308,17 @@ pub fn omega_squared_bound<T: Real>(settings: &SpringSettings<T>) -> f64 {
             }
         });
         // The clamp's Hessian 2 (D/2) w P on the neighbour: row sum D w.
-        spine_clamps(settings, |_, k, w| {
+        spine_clamps(page, |_, k, w| {
             if let Some(r) = rows.get_mut(k) {
                 *r += d * w;
             }
         });
     }
-    let springs = 4.0
-        * (settings.stretch_stiffness.to_f64()
-            + settings.shear_stiffness.to_f64()
-            + settings.bend_stiffness.to_f64());
-    let m = settings.particle_mass.to_f64();
+    let springs = 4.0 * page.spring_stiffness;
     (0..grid.len())
         .map(|k| {
-            let share = mass_share(grid, k, settings.area_masses);
-            (springs + rows.get(k).copied().unwrap_or(0.0)) / (m * share)
+            let share = mass_share(grid, k, page.area_masses);
+            (springs + rows.get(k).copied().unwrap_or(0.0)) / (page.particle_mass * share)
         })
         .fold(0.0, f64::max)
 }

@@ -165,7 +165,7 @@ impl<T: Real> SpringNetwork<T> {
         }
         let mut plate_clamp = PotentialSet::new(d * T::HALF);
         if d > T::ZERO {
-            spine_clamps(settings, |spine, k, w| {
+            spine_clamps(&settings.flat_page(), |spine, k, w| {
                 plate_clamp.push(
                     SpineClamp {
                         spine: rest[spine],

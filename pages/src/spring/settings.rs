@@ -341,6 +341,33 @@ impl<T: Real> SpringSettings<T> {
         ]
     }
 
+    /// What the flat page's plate term and stability bound read of these settings
+    /// ([`super::bending::FlatPage`]).
+    #[must_use]
+    pub fn flat_page(&self) -> super::bending::FlatPage {
+        super::bending::FlatPage {
+            grid: folio_geometry::QuadGrid {
+                nx: self.particles_across,
+                nz: self.particles_along,
+            },
+            spacing: self.spacing().map(|h| h.to_f64()),
+            clamped_spine: self.fixed_spine && self.clamped_spine,
+            spring_stiffness: self.stretch_stiffness.to_f64()
+                + self.shear_stiffness.to_f64()
+                + self.bend_stiffness.to_f64(),
+            plate_stiffness: self.bending_stiffness.to_f64(),
+            particle_mass: self.particle_mass.to_f64(),
+            area_masses: self.area_masses,
+        }
+    }
+
+    /// The flat page's largest $\omega^2$, bounded ([`super::bending::omega_squared_bound`]
+    /// of [`SpringSettings::flat_page`]).
+    #[must_use]
+    pub fn omega_squared_bound(&self) -> f64 {
+        super::bending::omega_squared_bound(&self.flat_page())
+    }
+
     /// The integration step $h/n$ of one substep (seconds).
     #[must_use]
     pub fn substep(&self) -> T {
@@ -452,7 +479,7 @@ impl<T: Real> SpringSettings<T> {
         let h = self.substep().to_f64();
         let lightest = if self.area_masses { 0.25 } else { 1.0 };
         let m = self.particle_mass.to_f64();
-        let omega2 = super::bending::omega_squared_bound(self);
+        let omega2 = self.omega_squared_bound();
         let spring_rate = h * folio_kernels::math::sqrt::<f64>(omega2);
         if spring_rate.is_nan() || spring_rate > 2.0 {
             return Err(PageError::InvalidInput {
