@@ -6,7 +6,6 @@ use core::ops::Range;
 
 use folio_pages::gestures::side_name;
 use folio_pages::{BlockSide, Gesture, Gestures, PageError};
-use serde::Deserialize;
 use toml::Spanned;
 
 use crate::scene::{EventSpec, ModelKind, Scene};
@@ -23,15 +22,7 @@ const MAX_FRAME: u32 = 1_000_000;
 /// The most pages one grab may take (the scene's page limit, `book::MAX_PAGES`).
 const MAX_STACK: u32 = crate::book::MAX_PAGES;
 
-/// The side of the spine a grab takes its page from (`side = "left"` or `"right"`).
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "kebab-case")]
-pub enum Side {
-    /// Left of the spine: a turned page (turning back).
-    Left,
-    /// Right of the spine, where every model's page starts (the default).
-    Right,
-}
+pub use crate::scene::Side;
 
 impl From<Side> for BlockSide {
     fn from(side: Side) -> Self {

@@ -20,6 +20,7 @@ extern crate alloc;
 
 pub mod book;
 pub mod builtin;
+mod check;
 pub mod clock;
 pub mod events;
 pub mod fixtures;
