@@ -8,7 +8,7 @@
 //! The hard cover is the sixth effect a scene can name; it is part of the book's geometry
 //! ([`crate::BookParams::cover`]), which decides whether the cover nodes exist.
 
-use super::error::BookError;
+use folio_kernels::SettingError;
 use folio_kernels::{Constraint, Potential, Real};
 use folio_solvers::model::{ConstraintSet, PotentialSet, TermVisitor};
 
@@ -70,32 +70,52 @@ impl Effects {
         bookmarking: false,
     };
 
-    /// The scene names of the effects that are on, in a fixed order.
-    pub fn names(&self) -> impl Iterator<Item = &'static str> + '_ {
+    /// Every effect of the DOG book by the name scenes, reports, the C API's docs and the
+    /// browser's panel give it, in the order they list them: the five flags of this type
+    /// and `cover`, which is the book's geometry (module docs). The one list of the names.
+    pub const NAMES: [&'static str; 6] = [
+        "gravity",
+        "glue",
+        "collisions",
+        "cover",
+        "blocks",
+        "bookmarking",
+    ];
+
+    /// The flags in the order of [`Effects::NAMES`] (`None` for `cover`).
+    fn flags_mut(&mut self) -> [Option<&mut bool>; 6] {
         [
-            ("gravity", self.gravity),
-            ("glue", self.glue),
-            ("collisions", self.collisions),
-            ("blocks", self.blocks),
-            ("bookmarking", self.bookmarking),
+            Some(&mut self.gravity),
+            Some(&mut self.glue),
+            Some(&mut self.collisions),
+            None,
+            Some(&mut self.blocks),
+            Some(&mut self.bookmarking),
         ]
-        .into_iter()
-        .filter_map(|(name, on)| on.then_some(name))
     }
 
-    /// Switches the effect with scene name `name` on; `false` for an unknown name (`cover`
-    /// is not one of these: see the module docs).
+    /// The names of the effects that are on, in the order of [`Effects::NAMES`] (never
+    /// `cover`).
+    pub fn names(&self) -> impl Iterator<Item = &'static str> {
+        let mut copy = *self;
+        let on: [bool; 6] = copy.flags_mut().map(|flag| flag.is_some_and(|on| *on));
+        Self::NAMES
+            .into_iter()
+            .zip(on)
+            .filter_map(|(name, on)| on.then_some(name))
+    }
+
+    /// Switches the effect named `name` on; `false` for a name that is no flag of this
+    /// type (`cover` is the book's geometry: see the module docs).
     pub fn enable(&mut self, name: &str) -> bool {
-        let flag = match name {
-            "gravity" => &mut self.gravity,
-            "glue" => &mut self.glue,
-            "collisions" => &mut self.collisions,
-            "blocks" => &mut self.blocks,
-            "bookmarking" => &mut self.bookmarking,
-            _ => return false,
-        };
-        *flag = true;
-        true
+        let at = Self::NAMES.iter().position(|n| *n == name);
+        match at.and_then(|i| self.flags_mut().into_iter().nth(i).flatten()) {
+            Some(flag) => {
+                *flag = true;
+                true
+            }
+            None => false,
+        }
     }
 
     /// Collision handling is on and compiled in. Every guard of collision work tests this:
@@ -116,23 +136,23 @@ impl Effects {
     /// Checks that every effect that is on has what it needs.
     ///
     /// # Errors
-    /// [`BookError::InvalidSetting`] for the glue without the blocks it joins, or an effect
-    /// whose Cargo feature is off.
-    pub fn validate(&self) -> Result<(), BookError> {
+    /// The glue without the blocks it joins, or an effect whose Cargo feature is off (the
+    /// path is the effect's field).
+    pub fn validate(&self) -> Result<(), SettingError> {
         let on = [self.collisions, self.bookmarking];
         for ((name, _, compiled), on) in FEATURES.into_iter().zip(on) {
             if on && !compiled {
-                return Err(BookError::InvalidSetting {
-                    field: name,
-                    requirement: "off: its Cargo feature of folio-solvers is not enabled",
-                });
+                return Err(SettingError::new(
+                    name,
+                    "off: its Cargo feature of folio-book is not enabled",
+                ));
             }
         }
         if self.glue && !self.blocks {
-            return Err(BookError::InvalidSetting {
-                field: "effects.glue",
-                requirement: "off without effects.blocks (the glue joins the two blocks)",
-            });
+            return Err(SettingError::new(
+                "glue",
+                "off without blocks (the glue joins the two blocks)",
+            ));
         }
         Ok(())
     }
@@ -160,5 +180,40 @@ impl<T: Real> TermVisitor<T> for TermCensus {
     ) {
         self.constraints += set.terms().len();
         self.rows += R * set.terms().len();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Effects;
+
+    /// Each name switches on its own flag and no other, and reads back as itself; `cover`
+    /// and unknown names switch on nothing.
+    #[test]
+    fn each_name_is_its_own_flag() {
+        for name in Effects::NAMES {
+            let mut e = Effects::NONE;
+            let known = e.enable(name);
+            let on: Vec<&str> = e.names().collect();
+            if name == "cover" {
+                assert!(!known && on.is_empty());
+            } else {
+                assert!(known, "{name}");
+                assert_eq!(on, [name]);
+            }
+        }
+        let mut none = Effects::NONE;
+        assert!(!none.enable("tearing"));
+        let all: Vec<&str> = Effects {
+            collisions: true,
+            bookmarking: true,
+            ..Effects::ALL
+        }
+        .names()
+        .collect();
+        assert_eq!(
+            all,
+            ["gravity", "glue", "collisions", "blocks", "bookmarking"]
+        );
     }
 }

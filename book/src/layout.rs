@@ -12,6 +12,7 @@
 
 use alloc::vec::Vec;
 use folio_kernels::math;
+use folio_kernels::setting::{SettingError, require, require_at_least};
 
 pub use folio_geometry::BlockSide;
 
@@ -67,60 +68,19 @@ impl Default for BookParams {
     }
 }
 
-/// A book parameter that cannot be used.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum LayoutError {
-    /// `total_pages` is zero.
-    NoPages,
-    /// `left_pages` exceeds `total_pages`.
-    LeftPagesExceedTotal {
-        /// The left count given.
-        left: u32,
-        /// The total given.
-        total: u32,
-    },
-    /// A length or ratio is not finite and positive (zero allowed where documented).
-    NonPositive {
-        /// The offending field.
-        field: &'static str,
-    },
-    /// Fewer than three midline nodes per block.
-    TooFewMidlineNodes {
-        /// The count given.
-        found: usize,
-    },
-    /// A length, or the book's whole thickness, exceeds [`MAX_EXTENT`].
-    TooLarge {
-        /// The offending field.
-        field: &'static str,
-    },
-}
-
 /// The largest page width, page height, book thickness or cover size (page units): $10^4$
 /// times the seed's page width. Beyond it the squared distances of collision tests and
 /// grabs leave the `f32` range (and, near $10^{150}$, the `f64` one), so a grab could no
 /// longer tell nodes apart.
 pub const MAX_EXTENT: f64 = 1.2e5;
 
-impl core::fmt::Display for LayoutError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            Self::NoPages => write!(f, "a book needs at least one page"),
-            Self::LeftPagesExceedTotal { left, total } => {
-                write!(f, "left_pages ({left}) exceeds total_pages ({total})")
-            }
-            Self::NonPositive { field } => write!(f, "{field} must be finite and positive"),
-            Self::TooFewMidlineNodes { found } => {
-                write!(f, "midline_nodes is {found}; at least 3 are needed")
-            }
-            Self::TooLarge { field } => write!(f, "{field} exceeds {MAX_EXTENT} page units"),
-        }
-    }
-}
+/// The most pages a book may have: more only make every frame slower.
+pub const MAX_PAGES: u32 = 100_000;
 
-#[cfg(feature = "std")]
-impl core::error::Error for LayoutError {}
+/// The thinnest paper relative to the page width: $10^{-6} W$, about eight `f32` roundings
+/// of a coordinate on the page ($\varepsilon_{32} W \approx 1.2 \cdot 10^{-7} W$); thinner
+/// paper (a subnormal thickness) is below what the page's coordinates resolve.
+pub const MIN_THICKNESS_RATIO: f64 = 1e-6;
 
 impl BookParams {
     /// Page height (page units).
@@ -132,57 +92,75 @@ impl BookParams {
     /// Checks every field (type docs).
     ///
     /// # Errors
-    /// The first unusable field as a [`LayoutError`].
-    pub fn validate(&self) -> Result<(), LayoutError> {
-        if self.total_pages == 0 {
-            return Err(LayoutError::NoPages);
-        }
-        if self.left_pages > self.total_pages {
-            return Err(LayoutError::LeftPagesExceedTotal {
-                left: self.left_pages,
-                total: self.total_pages,
-            });
-        }
-        let positive = [
+    /// The first unusable field, its rule and its value.
+    pub fn validate(&self) -> Result<(), SettingError> {
+        let pages = |n: u32| f64::from(n);
+        require(
+            (1..=MAX_PAGES).contains(&self.total_pages),
+            "total_pages",
+            "from 1 to 100000",
+            pages(self.total_pages),
+        )?;
+        require(
+            self.left_pages <= self.total_pages,
+            "left_pages",
+            "at most total_pages",
+            pages(self.left_pages),
+        )?;
+        for (field, v) in [
             ("page_width", self.page_width),
             ("aspect_ratio", self.aspect_ratio),
             ("page_thickness", self.page_thickness),
-        ];
-        let non_negative = [
+        ] {
+            require(v.is_finite() && v > 0.0, field, "finite and > 0", v)?;
+        }
+        for (field, v) in [
             ("cover_thickness", self.cover_thickness),
             ("cover_overhang", self.cover_overhang),
-        ];
-        for (field, v) in positive {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(LayoutError::NonPositive { field });
-            }
-        }
-        for (field, v) in non_negative {
-            if !(v.is_finite() && v >= 0.0) {
-                return Err(LayoutError::NonPositive { field });
-            }
+        ] {
+            require(v.is_finite() && v >= 0.0, field, "finite and >= 0", v)?;
         }
         let extents = [
-            ("page_width", self.page_width),
-            ("page_height", self.page_height()),
+            ("page_width", self.page_width, "at most 1.2e5 page units"),
+            (
+                "aspect_ratio",
+                self.page_height(),
+                "such that the page's height (aspect_ratio x page_width) is at most 1.2e5 \
+                 page units",
+            ),
             (
                 "page_thickness",
                 self.page_thickness * f64::from(self.total_pages),
+                "such that the book's thickness (total_pages x page_thickness) is at most \
+                 1.2e5 page units",
             ),
-            ("cover_thickness", self.cover_thickness),
-            ("cover_overhang", self.cover_overhang),
+            (
+                "cover_thickness",
+                self.cover_thickness,
+                "at most 1.2e5 page units",
+            ),
+            (
+                "cover_overhang",
+                self.cover_overhang,
+                "at most 1.2e5 page units",
+            ),
         ];
-        for (field, v) in extents {
-            if v > MAX_EXTENT {
-                return Err(LayoutError::TooLarge { field });
-            }
+        for (field, v, requirement) in extents {
+            require(v <= MAX_EXTENT, field, requirement, v)?;
         }
-        if self.midline_nodes < 3 {
-            return Err(LayoutError::TooFewMidlineNodes {
-                found: self.midline_nodes,
-            });
-        }
-        Ok(())
+        require_at_least(
+            "page_thickness",
+            self.page_thickness,
+            MIN_THICKNESS_RATIO * self.page_width,
+            "1e-6 of the page width: thinner paper is below what the page's coordinates \
+             resolve",
+        )?;
+        require(
+            self.midline_nodes >= 3,
+            "midline_nodes",
+            "at least 3",
+            self.midline_nodes as f64,
+        )
     }
 }
 
@@ -206,7 +184,7 @@ impl BookLayout {
     ///
     /// # Errors
     /// As [`BookParams::validate`].
-    pub fn new(params: BookParams) -> Result<Self, LayoutError> {
+    pub fn new(params: BookParams) -> Result<Self, SettingError> {
         params.validate()?;
         let half = 0.5 * f64::from(params.total_pages) * params.page_thickness;
         let y0 = if params.cover {
@@ -629,38 +607,29 @@ mod tests {
         let bad = |f: fn(&mut BookParams)| {
             let mut p = ok;
             f(&mut p);
-            p.validate().unwrap_err()
+            let e = p.validate().unwrap_err();
+            (e.path.to_string(), e.value)
         };
-        assert_eq!(bad(|p| p.total_pages = 0), LayoutError::NoPages);
+        let at = |field: &str, v: f64| (field.to_string(), Some(v));
+        assert_eq!(bad(|p| p.total_pages = 0), at("total_pages", 0.0));
         assert_eq!(
-            bad(|p| p.left_pages = 101),
-            LayoutError::LeftPagesExceedTotal {
-                left: 101,
-                total: 100
-            }
+            bad(|p| p.total_pages = 100_001),
+            at("total_pages", 100_001.0)
         );
-        assert_eq!(
-            bad(|p| p.page_width = f64::NAN),
-            LayoutError::NonPositive {
-                field: "page_width"
-            }
-        );
-        assert_eq!(
-            bad(|p| p.cover_overhang = -1.0),
-            LayoutError::NonPositive {
-                field: "cover_overhang"
-            }
-        );
+        assert_eq!(bad(|p| p.left_pages = 101), at("left_pages", 101.0));
+        let nan = bad(|p| p.page_width = f64::NAN);
+        assert_eq!(nan.0, "page_width");
+        assert_eq!(bad(|p| p.cover_overhang = -1.0), at("cover_overhang", -1.0));
         assert_eq!(
             bad(|p| p.page_width = 2.0 * MAX_EXTENT),
-            LayoutError::TooLarge {
-                field: "page_width"
-            }
+            at("page_width", 2.0 * MAX_EXTENT)
         );
+        assert_eq!(bad(|p| p.aspect_ratio = 2e4).0, "aspect_ratio");
         assert_eq!(
-            bad(|p| p.midline_nodes = 2),
-            LayoutError::TooFewMidlineNodes { found: 2 }
+            bad(|p| p.page_thickness = 4e-320),
+            at("page_thickness", 4e-320)
         );
+        assert_eq!(bad(|p| p.midline_nodes = 2), at("midline_nodes", 2.0));
         // Zero is allowed where documented.
         let mut flat = ok;
         flat.cover_thickness = 0.0;

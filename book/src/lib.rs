@@ -53,11 +53,14 @@ pub use bookmark::{Flip, History};
 pub use effects::{Effects, TermCensus};
 pub use error::BookError;
 pub use interaction::{Ray, Tent};
-pub use layout::{BlockSide, BookLayout, BookParams, LayoutError};
+pub use layout::{BlockSide, BookLayout, BookParams, MAX_EXTENT, MAX_PAGES};
 pub use model::{BookTerms, Family, NodeMap};
 pub use paper::{BookUnits, Paper};
 pub use script::{Action, Event, Script, ScriptError};
-pub use settings::{BookSettings, MICROCONTROLLER_GRID, WEIGHT_RANGES, Weights};
+pub use settings::{
+    BookSettings, MAX_CORRECTIONS, MAX_TIME_STEP, MICROCONTROLLER_GRID, MIN_CELL_TOLERANCES,
+    MIN_TIME_STEP, WEIGHT_RANGES, Weights,
+};
 pub use simulation::{
     Book, BookStepReport, BookmarkOutcome, DragOutcome, GrabOutcome, InputOutcome, PageCounts,
     Phase,

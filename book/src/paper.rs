@@ -37,6 +37,7 @@
 use core::fmt;
 
 use folio_kernels::Real;
+use folio_kernels::setting::{SettingError, require};
 
 use super::error::BookError;
 use super::quadrature;
@@ -110,8 +111,8 @@ impl Paper {
     /// smaller side.
     ///
     /// # Errors
-    /// [`BookError::InvalidSetting`] naming the first figure that is not.
-    pub fn validate(&self) -> Result<(), BookError> {
+    /// The first figure that is not, its rule and its value.
+    pub fn validate(&self) -> Result<(), SettingError> {
         let figures = [
             ("paper.width", self.width),
             ("paper.height", self.height),
@@ -122,13 +123,12 @@ impl Paper {
         for (field, v) in figures {
             positive(field, v)?;
         }
-        if self.thickness > 0.1 * self.width.min(self.height) {
-            return Err(BookError::InvalidSetting {
-                field: "paper.thickness",
-                requirement: "at most a tenth of the page's smaller side",
-            });
-        }
-        Ok(())
+        require(
+            self.thickness <= 0.1 * self.width.min(self.height),
+            "paper.thickness",
+            "at most a tenth of the page's smaller side",
+            self.thickness,
+        )
     }
 
     /// The sag number $\alpha = \rho g L^3 / D$ (module docs).
@@ -192,15 +192,8 @@ impl fmt::Display for Paper {
 }
 
 /// `Ok` for a positive finite `v`, else the error naming `field`.
-fn positive(field: &'static str, v: f64) -> Result<(), BookError> {
-    if v.is_finite() && v > 0.0 {
-        Ok(())
-    } else {
-        Err(BookError::InvalidSetting {
-            field,
-            requirement: "positive and finite",
-        })
-    }
+fn positive(field: &'static str, v: f64) -> Result<(), SettingError> {
+    require(v.is_finite() && v > 0.0, field, "finite and > 0", v)
 }
 
 /// $\sqrt{x}$ in `f64` without `std`.
@@ -258,7 +251,7 @@ mod tests {
     #[test]
     fn bad_paper_is_named() {
         let field = |p: Paper| match p.validate() {
-            Err(crate::BookError::InvalidSetting { field, .. }) => field,
+            Err(e) => e.path.field(),
             other => panic!("{other:?}"),
         };
         let p = Paper::default();

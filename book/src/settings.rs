@@ -3,6 +3,9 @@
 
 use crate::BookParams;
 use folio_kernels::Real;
+use folio_kernels::setting::{
+    SettingError, require, require_at_least, require_non_negative, require_positive, require_range,
+};
 
 use super::effects::Effects;
 use folio_solvers::settings::Settings;
@@ -34,8 +37,8 @@ pub struct Weights<T: Real> {
     pub pull: T,
 }
 
-/// The range each weight is documented and validated for (field path, lowest, highest,
-/// the requirement as [`crate::BookError::InvalidSetting`] states it), in field order; the
+/// The range each weight is documented and validated for (field path, lowest, highest),
+/// in field order; the
 /// defaults lie inside. Scenes were allowed [0, 1e9]; inside the ranges below, random
 /// gestures (grabs anywhere, drags beyond the book, flicks, releases) keep the page within
 /// 10 % stretch for any combination of weights (`tests/tests/bounded_book.rs`, and the
@@ -61,12 +64,12 @@ pub struct Weights<T: Real> {
 ///   the node as a pin, and one Newton step per frame then stretches the page around it
 ///   (15 %); with no pull at all a grab holds nothing and the page springs off the block
 ///   (19 % at 0 with `bend_page` 80, `bend_blocks` 400, `glue` 300, `iso_page` 8000).
-pub const WEIGHT_RANGES: [(&str, f64, f64, &str); 5] = [
-    ("weights.bend_page", 30.0, 200.0, "in [30, 200]"),
-    ("weights.bend_blocks", 100.0, 1e4, "in [100, 1e4]"),
-    ("weights.glue", 100.0, 3000.0, "in [100, 3000]"),
-    ("weights.iso_page", 3000.0, 3e4, "in [3000, 3e4]"),
-    ("weights.pull", 50.0, 2000.0, "in [50, 2000]"),
+pub const WEIGHT_RANGES: [(&str, f64, f64); 5] = [
+    ("weights.bend_page", 30.0, 200.0),
+    ("weights.bend_blocks", 100.0, 1e4),
+    ("weights.glue", 100.0, 3000.0),
+    ("weights.iso_page", 3000.0, 3e4),
+    ("weights.pull", 50.0, 2000.0),
 ];
 
 impl<T: Real> Weights<T> {
@@ -418,48 +421,61 @@ impl<T: Real> BookSettings<T> {
     }
 }
 
-/// `Ok` when `ok`, else [`crate::BookError::InvalidSetting`] naming `field` and `requirement`.
-fn check(ok: bool, field: &'static str, requirement: &'static str) -> Result<(), crate::BookError> {
-    if ok {
-        Ok(())
-    } else {
-        Err(crate::BookError::InvalidSetting { field, requirement })
-    }
-}
+pub use folio_kernels::setting::MIN_TIME_STEP;
+
+/// The longest time step (seconds) of a book: six frames at 60 per second. (A scene file
+/// holds its steps to at most one frame, since a frame takes a whole number of steps.)
+pub const MAX_TIME_STEP: f64 = 0.1;
+
+/// A grid cell of the page must be at least this many times the book's constraint
+/// tolerance (`constraint_tolerance`, $10^{-4}$ page units by default): in a smaller page
+/// every constraint holds to within the tolerance whatever the page does, and a gesture
+/// no longer moves it measurably (a page $10^{-9}$ wide cannot be touched).
+pub const MIN_CELL_TOLERANCES: f64 = 100.0;
+
+/// The most iterations of one constraint projection pass (`max_corrections`).
+pub const MAX_CORRECTIONS: u32 = 50;
 
 impl<T: Real> BookSettings<T> {
-    /// Checks every field.
+    /// Checks every field against its range (each field's docs, [`WEIGHT_RANGES`], and the
+    /// layout's, the effects' and the solver's own `validate`), and that the page can be
+    /// touched: a grid cell at least [`MIN_CELL_TOLERANCES`] constraint tolerances wide.
     ///
     /// # Errors
-    /// The first unusable field.
-    pub fn validate(&self) -> Result<(), crate::BookError> {
-        self.params.validate()?;
-        self.effects.validate()?;
-        self.solver.validate()?;
-        let positive = |v: T| v.is_finite() && v > T::ZERO;
-        let non_negative = |v: T| v.is_finite() && v >= T::ZERO;
-        check(self.quads_across >= 2, "quads_across", "at least 2")?;
-        check(self.quads_along >= 2, "quads_along", "at least 2")?;
-        check(
-            self.quads_across * self.quads_along <= 1 << 16,
-            "quads_across",
-            "at most 65536 quads in all",
+    /// The first unusable field, by its path in these settings (`params.page_width`,
+    /// `weights.glue`, `solver.time_step`), its rule and its value.
+    pub fn validate(&self) -> Result<(), SettingError> {
+        self.params.validate().map_err(|e| e.within("params"))?;
+        self.effects.validate().map_err(|e| e.within("effects"))?;
+        // The book's range of the step first: it is narrower than the solver's.
+        let h = self.solver.time_step.to_f64();
+        require(
+            (MIN_TIME_STEP..=MAX_TIME_STEP).contains(&h),
+            "solver.time_step",
+            "in [1e-6, 0.1] seconds",
+            h,
         )?;
-        let others = [
+        self.solver.validate().map_err(|e| e.within("solver"))?;
+        let (across, along) = (self.quads_across, self.quads_along);
+        require(across >= 2, "quads_across", "at least 2", across as f64)?;
+        require(along >= 2, "quads_along", "at least 2", along as f64)?;
+        require(
+            across.saturating_mul(along) <= 1 << 16,
+            "quads_across",
+            "such that the page has at most 65536 quads (quads_across x quads_along)",
+            across as f64,
+        )?;
+        for (field, v) in [
             ("gravity", self.gravity),
             ("air_drag", self.air_drag),
             ("contact_stiffness", self.contact_stiffness),
             ("contact_friction", self.contact_friction),
             ("sleep_speed", self.sleep_speed),
-        ];
-        for (field, v) in others {
-            check(non_negative(v), field, "finite and >= 0")?;
+        ] {
+            require_non_negative(field, v.to_f64())?;
         }
-        for ((field, v), (_, lo, hi, requirement)) in
-            self.weights.named().into_iter().zip(WEIGHT_RANGES)
-        {
-            let v = v.to_f64();
-            check(v.is_finite() && v >= lo && v <= hi, field, requirement)?;
+        for ((field, v), (_, lo, hi)) in self.weights.named().into_iter().zip(WEIGHT_RANGES) {
+            require_range(field, v.to_f64(), lo, hi)?;
         }
         for (field, v) in [
             ("page_mass", self.page_mass),
@@ -472,40 +488,52 @@ impl<T: Real> BookSettings<T> {
             ("settle_tolerance", self.settle_tolerance),
             ("constraint_tolerance", self.constraint_tolerance),
         ] {
-            check(positive(v), field, "finite and > 0")?;
+            require_positive(field, v.to_f64())?;
         }
-        check(
-            positive(self.tent_height) && self.tent_height <= T::ONE,
+        require_at_least(
+            "params.page_width",
+            self.params.page_width,
+            MIN_CELL_TOLERANCES * self.constraint_tolerance.to_f64() * across as f64,
+            "a page too small to touch: its grid cells must be at least 100 constraint \
+             tolerances wide",
+        )?;
+        require(
+            self.tent_height > T::ZERO && self.tent_height <= T::ONE,
             "tent_height",
             "in (0, 1]",
+            self.tent_height.to_f64(),
         )?;
-        check(
-            self.contact_pin_weight.is_finite() && self.contact_pin_weight >= T::ONE,
-            "contact_pin_weight",
-            "finite and >= 1",
-        )?;
-        check(self.sleep_frames >= 1, "sleep_frames", "at least 1")?;
-        check(
-            self.settle_stretch.is_finite() && self.settle_stretch >= T::ONE,
-            "settle_stretch",
-            "finite and >= 1",
-        )?;
-        check(
-            (1..=16).contains(&self.collision_rounds),
-            "collision_rounds",
-            "between 1 and 16",
-        )
+        for (field, v) in [
+            ("contact_pin_weight", self.contact_pin_weight),
+            ("settle_stretch", self.settle_stretch),
+        ] {
+            require(
+                v.is_finite() && v >= T::ONE,
+                field,
+                "finite and >= 1",
+                v.to_f64(),
+            )?;
+        }
+        let sleep = self.sleep_frames;
+        require(sleep >= 1, "sleep_frames", "at least 1", f64::from(sleep))?;
+        let counts = [
+            ("max_corrections", self.max_corrections, 0, MAX_CORRECTIONS),
+            ("collision_rounds", self.collision_rounds, 1, 16),
+        ];
+        for (field, n, lo, hi) in counts {
+            require_range(field, f64::from(n), f64::from(lo), f64::from(hi))?;
+        }
+        Ok(())
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::BookError;
 
-    fn field(settings: BookSettings<f64>) -> &'static str {
+    fn field(settings: BookSettings<f64>) -> String {
         match settings.validate() {
-            Err(BookError::InvalidSetting { field, .. }) => field,
+            Err(e) => e.path.to_string(),
             other => panic!("expected an invalid setting, got {other:?}"),
         }
     }
@@ -538,12 +566,30 @@ mod tests {
         assert_eq!(field(with(|s| s.collision_rounds = 0)), "collision_rounds");
         // Zero is allowed for the non-negative fields.
         assert_eq!(with(|s| s.gravity = 0.0).validate(), Ok(()));
+        assert_eq!(field(with(|s| s.max_corrections = 51)), "max_corrections");
+        assert_eq!(
+            field(with(|s| s.solver.time_step = 0.2)),
+            "solver.time_step"
+        );
+        assert_eq!(
+            field(with(|s| s.solver.time_step = 0.0)),
+            "solver.time_step"
+        );
+        assert_eq!(
+            field(with(|s| s.solver.krylov_restart = 0)),
+            "solver.krylov_restart"
+        );
+        assert_eq!(
+            field(with(|s| s.params.page_width = 1e-3)),
+            "params.page_width"
+        );
+        assert_eq!(field(with(|s| s.effects.blocks = false)), "effects.glue");
         // The layout is checked first.
         let layout = with(|s| {
             s.params.total_pages = 0;
             s.quads_across = 1;
         });
-        assert!(matches!(layout.validate(), Err(BookError::Layout(_))));
+        assert_eq!(field(layout), "params.total_pages");
     }
 
     #[test]

@@ -11,7 +11,7 @@
 use crate::BookLayout;
 use alloc::vec::Vec;
 use folio_geometry::{BlockSide, Contacts, QuadGrid};
-use folio_kernels::{Real, Vec3Ops, math};
+use folio_kernels::{Real, SettingError, Vec3Ops, math};
 
 use super::bookmark::{Flip, History};
 use super::broad_phase::PageBroadPhase;
@@ -251,12 +251,8 @@ impl<T: Real> Book<T> {
     pub fn new(settings: BookSettings<T>) -> Result<Self, BookError> {
         settings.validate()?;
         let layout = BookLayout::new(settings.params)?;
-        let grid = QuadGrid::new(settings.quads_across, settings.quads_along).ok_or(
-            BookError::InvalidSetting {
-                field: "quads_across",
-                requirement: "at least 1",
-            },
-        )?;
+        let grid = QuadGrid::new(settings.quads_across, settings.quads_along)
+            .ok_or(SettingError::new("quads_across", "at least 1"))?;
         let terms = BookTerms::new(&layout, &settings, grid)?;
         let n = terms.nodes;
         let p = &layout.params;

@@ -237,12 +237,14 @@ typedef uint32_t FolioEffects;
 /**
  * The book to create. Start from `folio_book_settings_default` and change fields; every
  * field is checked by `folio_book_create` (`FOLIO_STATUS_INVALID_ARGUMENT` names the first
- * bad one), by the same rules as a scene file's `[book]` and `[solver]`. Lengths are page units, times seconds. The fields not listed here (weights,
- * masses, solver tolerances) take the seed's defaults for the chosen precision.
+ * bad one) by the book's own rules (`folio_book::BookSettings::validate`), the ones a scene
+ * file's `[book]` and `[solver]` are held to. Lengths are page units, times seconds. The
+ * fields not listed here (weights, masses, solver tolerances) take the seed's defaults for
+ * the chosen precision.
  */
 typedef struct FolioBookSettings {
     /**
-     * Pages in the book, 1 to 100000. Default 100.
+     * Pages in the book, from 1 to 100000. Default 100.
      */
     uint32_t total_pages;
     /**
@@ -267,8 +269,9 @@ typedef struct FolioBookSettings {
      */
     double page_thickness;
     /**
-     * Time step $h$ of one `folio_book_step`, in $[10^{-6}, 0.1]$ s (the range scene files
-     * allow). Default $1/60$ s.
+     * Time step $h$ of one `folio_book_step`, in $[10^{-6}, 0.1]$ s (the book's range; a
+     * scene file, whose frames of 1/60 s take whole numbers of steps, also holds it to one
+     * frame). Default $1/60$ s.
      */
     double time_step;
     /**

@@ -37,14 +37,13 @@ impl Failure {
     }
 
     /// The status for a [`BookError`]: unusable settings or input are the caller's
-    /// (`INVALID_ARGUMENT`: a layout, setting, solver setting, kernel parameter or input
-    /// error), anything else is the book's (`BOOK_ERROR`).
+    /// (`INVALID_ARGUMENT`: a setting, solver setting, kernel parameter or input error),
+    /// anything else is the book's (`BOOK_ERROR`).
     pub fn book(e: BookError) -> Self {
         let status = match e {
-            BookError::Layout(_)
-            | BookError::Kernel(_)
-            | BookError::Solver(SolverError::InvalidSetting { .. })
-            | BookError::InvalidSetting { .. }
+            BookError::Kernel(_)
+            | BookError::Solver(SolverError::InvalidSetting(_))
+            | BookError::InvalidSetting(_)
             | BookError::InvalidInput { .. } => FolioStatus::InvalidArgument,
             _ => FolioStatus::BookError,
         };

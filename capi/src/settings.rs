@@ -2,7 +2,7 @@
 //! `BookSettings`.
 
 use folio_book::{BookSettings, Effects};
-use folio_kernels::Real;
+use folio_kernels::{Real, SettingError, Shown};
 
 use crate::failure::Failure;
 use crate::guard;
@@ -47,12 +47,14 @@ pub const FOLIO_EFFECTS_ALL: FolioEffects = FOLIO_EFFECT_GRAVITY
 
 /// The book to create. Start from `folio_book_settings_default` and change fields; every
 /// field is checked by `folio_book_create` (`FOLIO_STATUS_INVALID_ARGUMENT` names the first
-/// bad one), by the same rules as a scene file's `[book]` and `[solver]`. Lengths are page units, times seconds. The fields not listed here (weights,
-/// masses, solver tolerances) take the seed's defaults for the chosen precision.
+/// bad one) by the book's own rules (`folio_book::BookSettings::validate`), the ones a scene
+/// file's `[book]` and `[solver]` are held to. Lengths are page units, times seconds. The
+/// fields not listed here (weights, masses, solver tolerances) take the seed's defaults for
+/// the chosen precision.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FolioBookSettings {
-    /// Pages in the book, 1 to 100000. Default 100.
+    /// Pages in the book, from 1 to 100000. Default 100.
     pub total_pages: u32,
     /// Pages in the left block, $\le$ `total_pages`; the rest are in the right block.
     /// Default 50.
@@ -67,8 +69,9 @@ pub struct FolioBookSettings {
     /// Thickness of one page, at least $10^{-6} W$, the book (pages x thickness) at most
     /// $1.2 \cdot 10^5$. Default 0.0075 (the seed's).
     pub page_thickness: f64,
-    /// Time step $h$ of one `folio_book_step`, in $[10^{-6}, 0.1]$ s (the range scene files
-    /// allow). Default $1/60$ s.
+    /// Time step $h$ of one `folio_book_step`, in $[10^{-6}, 0.1]$ s (the book's range; a
+    /// scene file, whose frames of 1/60 s take whole numbers of steps, also holds it to one
+    /// frame). Default $1/60$ s.
     pub time_step: f64,
     /// Quads of the active page's grid across the page (binding to fore-edge), $\ge 2$.
     /// Default 8.
@@ -120,13 +123,13 @@ fn effect_bits(e: Effects) -> FolioEffects {
 impl FolioBookSettings {
     /// The solver's settings in precision `T`: the seed's defaults for `T` with these
     /// fields. Checks what only the C API has (the cover flag, the effect bits), then the
-    /// validation scene files use ([`folio_scene::limits::book`], on the same fields in
-    /// `f64`): a field a scene file may not hold is refused here too. The book checks the
-    /// precision's own limits when it is built.
+    /// book's own validation ([`BookSettings::validate`], on the same fields in `f64`, the
+    /// one scene files are held to). The book checks the precision's own limits when it is
+    /// built.
     ///
     /// # Errors
     /// `INVALID_ARGUMENT` for a cover flag other than 0 or 1, an unknown effect bit, or a
-    /// setting [`folio_scene::limits::book`] refuses (the message names the field).
+    /// setting [`BookSettings::validate`] refuses (the message names the C field).
     pub(crate) fn book_settings<T: Real>(&self) -> Result<BookSettings<T>, Failure> {
         if self.cover > 1 {
             return Err(Failure::invalid(format!(
@@ -141,15 +144,7 @@ impl FolioBookSettings {
             )));
         }
         let wide = self.fill(BookSettings::<f64>::default());
-        folio_scene::limits::book(&wide).map_err(|r| {
-            // The scene key's section is no part of the C field's name.
-            let field = ["book.", "solver."]
-                .iter()
-                .find_map(|section| r.key.strip_prefix(section))
-                .unwrap_or(&r.key);
-            let message = r.message.replace(&r.key, field);
-            Failure::invalid(message)
-        })?;
+        wide.validate().map_err(|e| Failure::invalid(refusal(&e)))?;
         Ok(self.fill(BookSettings::<T>::default()))
     }
 
@@ -174,6 +169,24 @@ impl FolioBookSettings {
         };
         book
     }
+}
+
+/// A refusal of [`BookSettings::validate`] in the C API's words: the field of
+/// `FolioBookSettings` (`page_width`, not `params.page_width`), or the effect bit.
+fn refusal(e: &SettingError) -> String {
+    let path = e.path.to_string();
+    if let Some(effect) = path.strip_prefix("effects.") {
+        return format!("`effects`: {effect} must be {}", e.requirement);
+    }
+    let field = ["params.", "solver."]
+        .iter()
+        .find_map(|section| path.strip_prefix(section))
+        .unwrap_or(&path);
+    let not = e
+        .value
+        .map(|v| format!(", not {}", Shown(v)))
+        .unwrap_or_default();
+    format!("`{field}` must be {}{not}", e.requirement)
 }
 
 /// Writes the default settings (each field's docs give its default) to `*out`.

@@ -14,8 +14,16 @@ type Case = (&'static str, fn(&mut FolioBookSettings), &'static str);
 #[test]
 fn out_of_range_settings_are_refused_by_name() {
     let cases: [Case; 22] = [
-        ("no pages", |s| s.total_pages = 0, "at least one page"),
-        ("left > total", |s| s.left_pages = 101, "left_pages (101)"),
+        (
+            "no pages",
+            |s| s.total_pages = 0,
+            "`total_pages` must be from 1 to 100000, not 0",
+        ),
+        (
+            "left > total",
+            |s| s.left_pages = 101,
+            "`left_pages` must be at most total_pages, not 101",
+        ),
         ("zero width", |s| s.page_width = 0.0, "page_width"),
         ("negative width", |s| s.page_width = -12.0, "page_width"),
         ("NaN width", |s| s.page_width = f64::NAN, "page_width"),
@@ -27,9 +35,13 @@ fn out_of_range_settings_are_refused_by_name() {
         (
             "huge width",
             |s| s.page_width = 1e300,
-            "1e300 exceeds 120000",
+            "`page_width` must be at most 1.2e5 page units, not 1e300",
         ),
-        ("huge height", |s| s.aspect_ratio = 1e6, "exceeds 120000"),
+        (
+            "huge height",
+            |s| s.aspect_ratio = 1e6,
+            "`aspect_ratio` must be such that the page's height",
+        ),
         ("NaN aspect", |s| s.aspect_ratio = f64::NAN, "aspect_ratio"),
         (
             "zero thickness",
@@ -60,7 +72,7 @@ fn out_of_range_settings_are_refused_by_name() {
         (
             "glue without blocks",
             |s| s.effects = FOLIO_EFFECTS_ALL & !FOLIO_EFFECT_BLOCKS,
-            "effects.glue",
+            "`effects`: glue must be off without blocks",
         ),
         (
             "f32 time step beyond f32",

@@ -325,9 +325,8 @@ fn run_book<T: Real>(
         let meter = Meter::start();
         let (step, steps) = advance_frame(
             frame_steps(frame, h),
-            Err(BookError::InvalidSetting {
-                field: "no step",
-                requirement: "taken",
+            Err(BookError::InvalidInput {
+                what: "no step taken",
             }),
             || {
                 let step = book.step();

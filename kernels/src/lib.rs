@@ -44,6 +44,7 @@ pub mod math;
 pub mod membrane;
 pub mod positional;
 pub mod real;
+pub mod setting;
 pub mod splitmix;
 pub mod spring;
 pub mod stencil;
@@ -51,4 +52,5 @@ pub mod term;
 
 pub use error::KernelError;
 pub use real::{Mat3Ops, Real, Vec3Ops};
+pub use setting::{Requirement, SettingError, SettingPath, Shown};
 pub use term::{Constraint, Potential};

@@ -43,6 +43,7 @@
 
 use folio_geometry::{BlockSide, QuadGrid};
 use folio_kernels::cone::{ConeCurl, LANES};
+use folio_kernels::setting::{SettingError, require};
 use folio_kernels::{Real, Vec3Ops, math};
 
 use super::{PageError, PageModel, PageStatus, PageStep, check_finger, check_grab, material_point};
@@ -107,35 +108,49 @@ impl<T: Real> Default for ConeSettings<T> {
 }
 
 impl<T: Real> ConeSettings<T> {
-    /// Checks every field.
+    /// Checks every field against its range (the field docs).
     ///
     /// # Errors
-    /// [`PageError::InvalidInput`] naming the first bad field.
-    pub fn validate(&self) -> Result<(), PageError> {
+    /// The first bad field, its rule and its value.
+    pub fn validate(&self) -> Result<(), SettingError> {
         let positive = |v: T| v.is_finite() && v > T::ZERO;
-        let bad = |what| Err(PageError::InvalidInput { what });
-        if !(positive(self.width) && positive(self.height)) {
-            return bad("cone page size (must be finite and > 0)");
+        let real = |v: T| v.to_f64();
+        for (field, v) in [
+            ("width", self.width),
+            ("height", self.height),
+            ("fit_tolerance", self.fit_tolerance),
+            ("fit_apex_max", self.fit_apex_max),
+        ] {
+            require(positive(v), field, "finite and > 0", real(v))?;
         }
-        if self.flip_frames == 0 || self.settle_frames == 0 {
-            return bad("cone flip_frames / settle_frames (must be >= 1)");
+        for (field, n) in [
+            ("flip_frames", self.flip_frames),
+            ("settle_frames", self.settle_frames),
+        ] {
+            require(n >= 1, field, "at least 1", f64::from(n))?;
         }
         let half_pi = T::from_f64(core::f64::consts::FRAC_PI_2);
         let angle = |v: T, min: f64| v.is_finite() && v >= T::from_f64(min) && v <= half_pi;
-        if !angle(self.flip_theta, 1e-3) {
-            return bad("cone flip_theta (must be in [1e-3, pi/2])");
-        }
-        if !angle(self.fit_theta_min, 0.01) {
-            return bad("cone fit_theta_min (must be in [0.01, pi/2])");
-        }
-        if !(self.flip_apex.is_finite() && self.flip_apex >= T::ZERO) {
-            return bad("cone flip_apex (must be finite and >= 0)");
-        }
-        if !(positive(self.fit_tolerance) && positive(self.fit_apex_max)) {
-            return bad("cone fit_tolerance / fit_apex_max (must be finite and > 0)");
-        }
-        if self.render_quads.contains(&0) {
-            return bad("cone render_quads (must be >= 1 each)");
+        let theta = self.flip_theta;
+        require(
+            angle(theta, 1e-3),
+            "flip_theta",
+            "in [1e-3, pi/2]",
+            real(theta),
+        )?;
+        let theta = self.fit_theta_min;
+        require(
+            angle(theta, 0.01),
+            "fit_theta_min",
+            "in [0.01, pi/2]",
+            real(theta),
+        )?;
+        let apex = self.flip_apex;
+        let ok = apex.is_finite() && apex >= T::ZERO;
+        require(ok, "flip_apex", "finite and >= 0", real(apex))?;
+        for (i, n) in self.render_quads.into_iter().enumerate() {
+            let field = ["render_quads[0]", "render_quads[1]"][i];
+            require(n >= 1, field, "at least 1", n as f64)?;
         }
         Ok(())
     }

@@ -44,7 +44,7 @@ pub mod xpbd;
 
 use folio_geometry::QuadGrid;
 use folio_geometry::mesh::{MeshError, TriMesh, page_mesh};
-use folio_kernels::{Real, Vec3Ops};
+use folio_kernels::{Real, SettingError, Vec3Ops};
 
 #[cfg(feature = "dog")]
 use folio_book::BookError;
@@ -58,6 +58,9 @@ pub use touch::TouchScript;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum PageError {
+    /// A setting of the page model that is NaN, infinite or out of its range (the path is
+    /// the field's in the model's settings type).
+    InvalidSetting(SettingError),
     /// A non-finite or out-of-range input; `what` names it.
     InvalidInput {
         /// The offending input.
@@ -80,6 +83,31 @@ pub enum PageError {
     Gesture(GestureError),
 }
 
+/// The effects of the particle pages (the mass-spring and XPBD pages) by their scene names:
+/// `gravity` (the particles' weight) and `collisions` (the table under the page). The one
+/// list of the names.
+pub const PARTICLE_PAGE_EFFECTS: [&str; 2] = ["gravity", "collisions"];
+
+/// `Ok` when a page's `width` and `height` are finite, > 0 and at most the precision's
+/// largest coordinate ([`Real::COORD_MAX`]).
+///
+/// # Errors
+/// The first of `width` and `height` that is not.
+pub(crate) fn require_page_size<T: Real>(width: T, height: T) -> Result<(), SettingError> {
+    for (field, v) in [("width", width), ("height", height)] {
+        let ok = v.is_finite() && v > T::ZERO && v <= T::COORD_MAX;
+        let rule = "finite and > 0, at most the precision's largest coordinate";
+        folio_kernels::setting::require(ok, field, rule, v.to_f64())?;
+    }
+    Ok(())
+}
+
+impl From<SettingError> for PageError {
+    fn from(e: SettingError) -> Self {
+        Self::InvalidSetting(e)
+    }
+}
+
 #[cfg(feature = "dog")]
 impl From<BookError> for PageError {
     fn from(e: BookError) -> Self {
@@ -90,6 +118,7 @@ impl From<BookError> for PageError {
 impl core::fmt::Display for PageError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
+            Self::InvalidSetting(e) => write!(f, "page setting {e}"),
             Self::InvalidInput { what } => write!(f, "invalid input: {what}"),
             Self::SampleCount { expected, got } => {
                 write!(

@@ -102,7 +102,7 @@ pub mod sync;
 
 use alloc::vec::Vec;
 use folio_geometry::{BlockSide, QuadGrid};
-use folio_kernels::{Real, Vec3Ops, math};
+use folio_kernels::{Real, SettingError, Vec3Ops, math};
 
 pub use energy::SpringEnergy;
 pub use implicit::ImplicitStepper;
@@ -159,8 +159,8 @@ impl<T: Real> SpringPage<T> {
     /// The page of `settings` flat at rest, its first key frame recorded.
     ///
     /// # Errors
-    /// [`PageError::InvalidInput`] naming the first bad setting
-    /// ([`SpringSettings::validate`]).
+    /// [`PageError::InvalidSetting`] naming the first bad setting
+    /// ([`SpringSettings::validate`], and the implicit solver's own refusal).
     pub fn new(settings: SpringSettings<T>) -> Result<Self, PageError> {
         settings.validate()?;
         let network = SpringNetwork::new(&settings);
@@ -169,14 +169,12 @@ impl<T: Real> SpringPage<T> {
         let implicit = match settings.integrator {
             Integrator::SemiImplicitEuler => None,
             Integrator::ImplicitEuler => {
-                let mut stepper =
-                    ImplicitStepper::new(settings.substep()).ok_or(PageError::InvalidInput {
-                        what: "time_step (refused by the implicit solver)",
-                    })?;
+                let mut stepper = ImplicitStepper::new(settings.substep()).ok_or(
+                    SettingError::new("time_step", "a substep the implicit solver takes"),
+                )?;
                 if !stepper.analyse(&network) {
-                    return Err(PageError::InvalidInput {
-                        what: "particle grid (refused by the implicit solver)",
-                    });
+                    let rule = "a particle grid the implicit solver can analyse";
+                    return Err(SettingError::new("particles_across", rule).into());
                 }
                 Some(stepper)
             }

@@ -150,7 +150,7 @@ impl<T: Real> XpbdPage<T> {
     /// The page of `settings` flat at rest on the plane $y = 0$.
     ///
     /// # Errors
-    /// [`PageError::InvalidInput`] naming the first bad setting
+    /// [`PageError::InvalidSetting`] naming the first bad setting
     /// ([`XpbdSettings::validate`]).
     pub fn new(settings: XpbdSettings<T>) -> Result<Self, PageError> {
         settings.validate()?;

@@ -1,20 +1,31 @@
-//! The book a DOG scene describes (`[book]`, `[weights]`, `[solver]`): checked by the
-//! validation the C API shares ([`crate::limits::book`], which runs the book's own
-//! [`BookSettings::validate`]), each refusal reported at the scene key that set it. Whether
-//! the scene's first grab can touch the page is `crate::reach` (feature `fixture-reach`).
+//! The book a DOG scene describes (`[book]`, `[weights]`, `[solver]`, `effects`): checked
+//! by the book's own [`BookSettings::validate`] (the one the C API uses), each refusal
+//! reported at the scene key that set it. Whether the scene's first grab can touch the page
+//! is `crate::reach` (feature `fixture-reach`).
 
 use core::ops::Range;
 
 use folio_book::BookSettings;
+use folio_kernels::{SettingError, Shown};
 use toml::Spanned;
 
 use crate::scene::Scene;
 use crate::settings::book_settings;
 
-pub use crate::limits::MAX_PAGES;
+pub use folio_book::MAX_PAGES;
 
 /// A refusal: the span of the scene key at fault, and why.
 pub(crate) type Problem = (Range<usize>, String);
+
+/// The fields of [`BookSettings`] a scene sets under another key (`[book]` is the field
+/// `params`; `[solver]` also holds the book's own iteration counts and its grid).
+const SCENE_KEYS: [(&str, &str); 5] = [
+    ("solver.tolerance", "solver.newton_tolerance"),
+    ("quads_across", "solver.grid"),
+    ("quads_along", "solver.grid"),
+    ("collision_rounds", "solver.collision_rounds"),
+    ("max_corrections", "solver.max_corrections"),
+];
 
 /// The scene keys of [`folio_book::BookParams`] that older scene files spell differently
 /// (serde aliases), or whose value another key sets (the page height is
@@ -22,8 +33,20 @@ pub(crate) type Problem = (Range<usize>, String);
 const OTHER_SPELLINGS: [(&str, &str); 3] = [
     ("book.total_pages", "book.pages"),
     ("book.page_thickness", "book.thickness"),
-    ("book.page_width", "book.aspect_ratio"),
+    ("book.aspect_ratio", "book.page_width"),
 ];
+
+/// The scene key of the field at `e`'s path in [`BookSettings`].
+fn scene_key(e: &SettingError) -> String {
+    let path = e.path.to_string();
+    if let Some((_, key)) = SCENE_KEYS.iter().find(|(field, _)| *field == path) {
+        (*key).to_string()
+    } else if let Some(field) = path.strip_prefix("params.") {
+        format!("book.{field}")
+    } else {
+        path
+    }
+}
 
 /// Where `key` (or another spelling of it) sits in the scene, else `[book]`.
 fn span(scene: &Scene, key: &str) -> Range<usize> {
@@ -38,9 +61,30 @@ fn span(scene: &Scene, key: &str) -> Range<usize> {
         .unwrap_or_else(|| scene.book.as_ref().map_or(0..0, Spanned::span))
 }
 
-/// Checks a DOG scene's book: `cover` is an effect, then the shared validation of the book
-/// `folio run` builds ([`crate::limits::book`], the one the C API uses), at the key that
-/// set the refused value.
+/// The book's refusal `e` at the scene key that set the field, in the scene's words.
+fn problem(scene: &Scene, e: &SettingError) -> Problem {
+    let not = e
+        .value
+        .map(|v| format!(", not {}", Shown(v)))
+        .unwrap_or_default();
+    if e.path.segments().first() == Some(&"effects") {
+        let name = e.path.field();
+        let list = scene.effects.as_ref();
+        let at = list
+            .and_then(|l| l.get_ref().iter().find(|n| n.get_ref() == name))
+            .map(Spanned::span)
+            .or_else(|| list.map(Spanned::span))
+            .unwrap_or(0..0);
+        return (at, format!("effect `{name}` must be {}", e.requirement));
+    }
+    let key = scene_key(e);
+    let message = format!("{key} must be {}{not}", e.requirement);
+    (span(scene, &key), message)
+}
+
+/// Checks a DOG scene's book: `cover` is an effect, then the book `folio run` builds is
+/// held to [`BookSettings::validate`] (the one the C API uses), at the key that set the
+/// refused value.
 ///
 /// # Errors
 /// The span of the refused key and why.
@@ -52,7 +96,7 @@ pub fn check(scene: &Scene) -> Result<(), Problem> {
         ));
     }
     let settings: BookSettings<f64> = book_settings(scene);
-    crate::limits::book(&settings).map_err(|r| (span(scene, &r.key), r.message))
+    settings.validate().map_err(|e| problem(scene, &e))
 }
 
 #[cfg(test)]
@@ -90,13 +134,16 @@ mod tests {
     fn a_refused_book_is_reported_at_its_key() {
         let (line, column, message) = refused("[book]\npage_width = 1e300\n");
         assert_eq!((line, column), (5, 14), "{message}");
-        assert!(
-            message.starts_with("book.page_width is too large"),
-            "{message}"
+        assert_eq!(
+            message,
+            "book.page_width must be at most 1.2e5 page units, not 1e300"
         );
         let (line, column, message) = refused("[book]\nthickness = -1.0\n");
         assert_eq!((line, column), (5, 13), "{message}");
-        assert_eq!(message, "book.page_thickness must be finite and > 0");
+        assert_eq!(
+            message,
+            "book.page_thickness must be finite and > 0, not -1"
+        );
         let (line, _, message) = refused("[book]\ncover_overhang = -0.5\n");
         assert_eq!(line, 5, "{message}");
         let (line, column, message) = refused("[book]\ncover = false\n");

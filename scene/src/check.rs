@@ -6,13 +6,14 @@
 
 use core::ops::Range;
 
+use folio_kernels::{SettingError, Shown};
 use toml::Spanned;
 use toml::de::DeTable;
 
 use crate::keys::{self, KeySpans};
 use crate::reader::{self, ReadError};
 use crate::scene::{
-    EFFECTS, GRID_RANGE, ModelKind, Precision, Scene, SceneError, SolverSection, line_column,
+    GRID_RANGE, ModelKind, Precision, Scene, SceneError, SolverSection, all_effects, line_column,
 };
 
 impl Scene {
@@ -171,8 +172,9 @@ impl Scene {
         let mut seen: Vec<&str> = Vec::new();
         for e in list.get_ref() {
             let name = e.get_ref().as_str();
-            let message = if !EFFECTS.contains(&name) {
-                format!("unknown effect `{name}`; known: {}", EFFECTS.join(", "))
+            let known = all_effects();
+            let message = if !known.contains(&name) {
+                format!("unknown effect `{name}`; known: {}", known.join(", "))
             } else if !model.effects().contains(&name) {
                 let has = model.effects();
                 format!(
@@ -186,8 +188,6 @@ impl Scene {
                 )
             } else if seen.contains(&name) {
                 format!("effect `{name}` named twice")
-            } else if name == "glue" && !self.has_effect("blocks") {
-                "`glue` joins the two blocks: it needs `blocks`".to_string()
             } else {
                 seen.push(name);
                 continue;
@@ -201,14 +201,9 @@ impl Scene {
         let bad =
             |span: Range<usize>, message: &str| Err(SceneError::at(text, Some(span), message));
         if let Some(w) = &self.weights {
+            // The book holds them to their ranges (`crate::book`).
             if model != ModelKind::Dog {
                 return bad(w.span(), "[weights] is for model = \"dog\" only");
-            }
-            for (key, v) in w.get_ref().named() {
-                if let Err(message) = crate::limits::weight(key, v) {
-                    let span = self.keys.span(key).unwrap_or_else(|| w.span());
-                    return bad(span, &message);
-                }
             }
         }
         let Some(section) = &self.solver else {
@@ -222,7 +217,8 @@ impl Scene {
         }
         let s = section.get_ref();
         if let Some(h) = &s.time_step {
-            // A finite step above a frame is told the scene's bound, not the book's.
+            // A frame takes a whole number of steps: the scene's own bound. The model holds
+            // the step to its range (its settings' `validate`).
             if h.get_ref().is_finite() && !crate::clock::fits_in_frame(*h.get_ref()) {
                 return bad(
                     h.span(),
@@ -233,31 +229,39 @@ impl Scene {
                     ),
                 );
             }
-            if let Err(message) = crate::limits::time_step(*h.get_ref()) {
-                return bad(h.span(), &message);
-            }
         }
         self.check_new_solver_keys(text, model, s)?;
+        // The book holds these to their ranges (`crate::book`).
         let dog_only = [
-            ("newton_iterations", &s.newton_iterations, 1..=20),
-            ("max_corrections", &s.max_corrections, 0..=50),
-            ("collision_rounds", &s.collision_rounds, 1..=16),
-            ("krylov_restart", &s.krylov_restart, 1..=50),
+            (
+                "newton_iterations",
+                s.newton_iterations.as_ref().map(Spanned::span),
+            ),
+            (
+                "max_corrections",
+                s.max_corrections.as_ref().map(Spanned::span),
+            ),
+            (
+                "collision_rounds",
+                s.collision_rounds.as_ref().map(Spanned::span),
+            ),
+            (
+                "krylov_restart",
+                s.krylov_restart.as_ref().map(Spanned::span),
+            ),
+            (
+                "newton_tolerance",
+                s.newton_tolerance.as_ref().map(Spanned::span),
+            ),
+            (
+                "constraint_hessian",
+                s.constraint_hessian.as_ref().map(Spanned::span),
+            ),
+            ("projection", s.projection.as_ref().map(Spanned::span)),
         ];
-        for (name, v, range) in dog_only {
-            let Some(v) = v else { continue };
-            if model != ModelKind::Dog {
-                return bad(
-                    v.span(),
-                    &format!("solver.{name} is for model = \"dog\" only"),
-                );
-            }
-            if !range.contains(v.get_ref()) {
-                let (lo, hi) = (range.start(), range.end());
-                return bad(
-                    v.span(),
-                    &format!("solver.{name} must be between {lo} and {hi}"),
-                );
+        for (name, span) in dog_only {
+            if let Some(span) = span.filter(|_| model != ModelKind::Dog) {
+                return bad(span, &format!("solver.{name} is for model = \"dog\" only"));
             }
         }
         if let Some(v) = &s.integrator {
@@ -268,21 +272,12 @@ impl Scene {
                 );
             }
         }
+        // The page model holds them to its range (`refused_settings`).
         if let Some(v) = &s.substeps {
-            let most = match model {
-                ModelKind::MassSpring => 64,
-                ModelKind::Xpbd => folio_pages::xpbd::MAX_SUBSTEPS,
-                _ => {
-                    return bad(
-                        v.span(),
-                        "solver.substeps is for model = \"mass-spring\" or \"xpbd\" only",
-                    );
-                }
-            };
-            if !(1..=most).contains(v.get_ref()) {
+            if !matches!(model, ModelKind::MassSpring | ModelKind::Xpbd) {
                 return bad(
                     v.span(),
-                    &format!("solver.substeps must be between 1 and {most}"),
+                    "solver.substeps is for model = \"mass-spring\" or \"xpbd\" only",
                 );
             }
         }
@@ -338,36 +333,6 @@ impl Scene {
                 );
             }
         }
-        if let Some(t) = &s.newton_tolerance {
-            if model != ModelKind::Dog {
-                return bad(
-                    t.span(),
-                    "solver.newton_tolerance is for model = \"dog\" only",
-                );
-            }
-            let t_value = *t.get_ref();
-            if !(t_value.is_finite() && t_value >= 0.0) {
-                return bad(
-                    t.span(),
-                    &format!(
-                        "solver.newton_tolerance must be finite and >= 0, not {}",
-                        crate::number::show(t_value)
-                    ),
-                );
-            }
-        }
-        let flags = [
-            ("constraint_hessian", &s.constraint_hessian),
-            ("projection", &s.projection),
-        ];
-        for (name, v) in flags {
-            if let Some(v) = v.as_ref().filter(|_| model != ModelKind::Dog) {
-                return bad(
-                    v.span(),
-                    &format!("solver.{name} is for model = \"dog\" only"),
-                );
-            }
-        }
         if let (Some(p), Some(m)) = (&s.projection, &s.max_corrections) {
             let (on, corrections) = (*p.get_ref(), *m.get_ref());
             if on != (corrections > 0) {
@@ -398,13 +363,42 @@ impl Scene {
         self.refused_settings("xpbd", checked)
     }
 
-    /// A page model's refusal of its settings, reported at `[solver]` (or the input).
+    /// A page model's refusal of its settings, at the `[solver]` key that set the field
+    /// (`grid` sets the page's particles or quads), else at `[solver]` (or the input) for a
+    /// field the scene does not set.
     fn refused_settings(
         &self,
         model: &str,
-        checked: Result<(), folio_pages::PageError>,
+        checked: Result<(), SettingError>,
     ) -> Result<(), (Range<usize>, String)> {
+        const SCENE_KEYS: [(&str, &str); 7] = [
+            ("particles_across", "solver.grid"),
+            ("particles_along", "solver.grid"),
+            ("quads_across", "solver.grid"),
+            ("quads_along", "solver.grid"),
+            ("time_step", "solver.time_step"),
+            ("substeps", "solver.substeps"),
+            ("integrator", "solver.integrator"),
+        ];
         checked.map_err(|e| {
+            let not = e
+                .value
+                .map(|v| format!(", not {}", Shown(v)))
+                .unwrap_or_default();
+            let key = SCENE_KEYS
+                .iter()
+                .find(|(field, _)| e.path.is(field))
+                .map(|(_, key)| *key);
+            if let Some(at) = key.and_then(|k| self.keys.span(k)) {
+                let key = key.unwrap_or_default();
+                return (
+                    at,
+                    format!(
+                        "{key}: the {model} page's {} must be {}{not}",
+                        e.path, e.requirement
+                    ),
+                );
+            }
             let span = self
                 .solver
                 .as_ref()

@@ -5,9 +5,10 @@
 //! deserializer ([`reader`]), the timed events and hands that drive a run ([`events`],
 //! [`hands`]), the recorded fixtures and built-in scenes they name ([`fixtures`],
 //! [`builtin`]), the frame clock (a frame is 1/60 s; [`clock`]), the model settings a scene
-//! describes ([`settings`]) and the tearing sheet of a sheet scene ([`sheet`]); the limits a
-//! DOG book's settings must meet, shared with the C API ([`limits`]), a scene name's rules
-//! ([`name`]) and short numbers in messages ([`number`]).
+//! describes ([`settings`]), the book of a DOG scene held to the book's own validation at
+//! the keys that set it ([`book`]), the tearing sheet of a sheet scene ([`sheet`]), a scene
+//! name's rules ([`name`]) and short numbers in messages ([`number`]). The ranges of the
+//! models' settings are the models' own (each settings type's `validate`).
 //!
 //! Features (both default): `sheet` (the tearing sheet's scenes, [`sheet`] and [`hands`])
 //! and `fixture-reach` (the check that a book fixture's first grab reaches the book,
@@ -27,7 +28,6 @@ pub mod fixtures;
 #[cfg(feature = "sheet")]
 pub mod hands;
 pub mod keys;
-pub mod limits;
 pub mod name;
 pub mod number;
 #[cfg(feature = "fixture-reach")]

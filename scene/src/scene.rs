@@ -134,20 +134,19 @@ pub enum ModelKind {
     Sheet,
 }
 
-pub use crate::limits::MAX_WEIGHT;
-
-/// Every effect a scene may name.
-pub const EFFECTS: [&str; 9] = [
-    "gravity",
-    "glue",
-    "collisions",
-    "cover",
-    "blocks",
-    "bookmarking",
-    "bending",
-    "cones",
-    "tearing",
-];
+/// Every effect a scene may name: each model's, once, in the order of the models.
+#[must_use]
+pub fn all_effects() -> Vec<&'static str> {
+    let mut all: Vec<&'static str> = Vec::new();
+    for model in ModelKind::ALL {
+        for name in model.effects() {
+            if !all.contains(name) {
+                all.push(name);
+            }
+        }
+    }
+    all
+}
 
 impl ModelKind {
     /// The name used in scene files and reports.
@@ -162,21 +161,23 @@ impl ModelKind {
         }
     }
 
-    /// The effects the model can simulate (its default set).
+    /// Every model, in the order scene docs list them.
+    pub const ALL: [Self; 5] = [
+        Self::Dog,
+        Self::Cone,
+        Self::MassSpring,
+        Self::Xpbd,
+        Self::Sheet,
+    ];
+
+    /// The effects the model can simulate (its default set), from the model's own list.
     #[must_use]
     pub fn effects(self) -> &'static [&'static str] {
         match self {
-            Self::Dog => &[
-                "gravity",
-                "glue",
-                "collisions",
-                "cover",
-                "blocks",
-                "bookmarking",
-            ],
+            Self::Dog => &folio_book::Effects::NAMES,
             Self::Cone => &[],
-            Self::MassSpring | Self::Xpbd => &["gravity", "collisions"],
-            Self::Sheet => &["gravity", "bending", "cones", "tearing"],
+            Self::MassSpring | Self::Xpbd => &folio_pages::PARTICLE_PAGE_EFFECTS,
+            Self::Sheet => &folio_tearing::sheet::SheetEffects::NAMES,
         }
     }
 }

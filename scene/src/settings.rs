@@ -150,12 +150,11 @@ pub fn sheet_settings(scene: &Scene) -> SheetSettings<f64> {
     if let Some(tearing) = &scene.tearing {
         s.tearing = *tearing.get_ref();
     }
-    s.effects = SheetEffects {
-        gravity: scene.has_effect("gravity"),
-        bending: scene.has_effect("bending"),
-        cones: scene.has_effect("cones"),
-        tearing: scene.has_effect("tearing"),
-    };
+    s.effects = SheetEffects::NONE;
+    for name in scene.effect_names() {
+        // The scene check refused every name the sheet does not have.
+        s.effects.enable(&name);
+    }
     if let Some(solver) = &scene.solver {
         set(&mut s.time_step, solver.get_ref().time_step.as_ref());
     }

@@ -6,8 +6,8 @@
 use core::ops::Range;
 
 use folio_geometry::SheetMesh;
-use folio_tearing::TearingError;
-use folio_tearing::sheet::{SheetSettings, TearingSheet, TearingSheetError};
+use folio_kernels::{SettingError, Shown};
+use folio_tearing::sheet::{SheetSettings, TearingSheet};
 use toml::Spanned;
 
 use crate::clock::FRAME_SECONDS;
@@ -102,53 +102,28 @@ fn check_spelling(scene: &Scene) -> Result<(), Problem> {
     Ok(())
 }
 
-/// The scene key of a field that [`SheetSettings::validate`] names: a path from
-/// [`SheetSettings`] (`"nx"`, `"cones.flip_margin"`), or a tearing field named by its type
-/// (`"TearSettings.snap"`, `"DetailSettings.sigma"`, `"FiberSettings.scale"`).
-fn scene_key(field: &str) -> String {
-    let tearing = [
-        ("TearSettings.", "tearing."),
-        ("DetailSettings.", "tearing.detail."),
-        ("FiberSettings.", "tearing.fibers."),
-    ];
-    if field == "time_step" {
-        return "solver.time_step".into();
+/// The scene key of a field that [`SheetSettings::validate`] names by its path from
+/// [`SheetSettings`]: `[tearing]` is its field `tearing`, the time step is `[solver]`'s,
+/// every other field is `[sheet]`'s.
+fn scene_key(path: &str) -> String {
+    if path == "time_step" {
+        "solver.time_step".into()
+    } else if path.starts_with("tearing.") {
+        path.to_string()
+    } else {
+        format!("sheet.{path}")
     }
-    tearing
-        .iter()
-        .find_map(|(ty, key)| field.strip_prefix(ty).map(|rest| format!("{key}{rest}")))
-        .unwrap_or_else(|| format!("sheet.{field}"))
 }
 
 /// What a refused setting is, at the scene key that set it (else at `[sheet]`).
-fn settings_problem(scene: &Scene, e: &TearingSheetError) -> Problem {
-    let (key, message) = match *e {
-        TearingSheetError::InvalidSetting { field, rule } => {
-            let key = scene_key(field);
-            let message = format!("{key} must be {rule}");
-            (Some(key), message)
-        }
-        TearingSheetError::Tearing(TearingError::OutOfRange {
-            field,
-            value,
-            min,
-            max,
-        }) => {
-            let key = scene_key(field);
-            let [value, min, max] = [value, min, max].map(crate::number::show);
-            let message = format!("{key} = {value} is outside [{min}, {max}]");
-            (Some(key), message)
-        }
-        TearingSheetError::Tearing(TearingError::NonFinite { field }) => {
-            let key = scene_key(field);
-            let message = format!("{key} is not finite");
-            (Some(key), message)
-        }
-        _ => (None, e.to_string()),
-    };
-    let span = key
-        .and_then(|k| scene.keys.span(&k))
-        .unwrap_or_else(|| whole_sheet(scene));
+fn settings_problem(scene: &Scene, e: &SettingError) -> Problem {
+    let key = scene_key(&e.path.to_string());
+    let not = e
+        .value
+        .map(|v| format!(", not {}", Shown(v)))
+        .unwrap_or_default();
+    let message = format!("{key} must be {}{not}", e.requirement);
+    let span = scene.keys.span(&key).unwrap_or_else(|| whole_sheet(scene));
     (span, message)
 }
 
@@ -266,13 +241,10 @@ mod tests {
         );
         let (line, column, message) = refused("[tearing.detail]\nweight = 1.5\n");
         assert_eq!((line, column), (7, 10), "{message}");
-        assert!(
-            message.starts_with("tearing.detail.weight = 1.5"),
-            "{message}"
-        );
+        assert_eq!(message, "tearing.detail.weight must be in [0, 1], not 1.5");
         let (line, column, message) = refused("[sheet]\nheight = -1.0\n");
         assert_eq!((line, column), (7, 10), "{message}");
-        assert_eq!(message, "sheet.height must be finite and > 0");
+        assert_eq!(message, "sheet.height must be finite and > 0, not -1");
     }
 
     #[test]

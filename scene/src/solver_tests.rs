@@ -125,15 +125,24 @@ fn a_key_out_of_range_is_refused_at_its_value() {
         refused_at_value("page-turn", t, "finite and >= 0");
     }
     for n in ["collision_rounds = 0", "collision_rounds = 17"] {
-        refused_at_value("page-turn", n, "between 1 and 16");
+        refused_at_value("page-turn", n, "solver.collision_rounds must be in [1, 16]");
     }
     for n in ["krylov_restart = 0", "krylov_restart = 51"] {
-        refused_at_value("page-turn", n, "between 1 and 50");
+        refused_at_value("page-turn", n, "solver.krylov_restart must be in [1, 50]");
     }
     refused_at_value("page-turn", "time_step = 0.02", "at most one frame");
     refused_at_value("mass-spring-turn", "time_step = 0.05", "at most one frame");
     refused_at_value("page-turn", "time_step = 1e308", "at most one frame");
-    refused_at_value("page-turn", "time_step = nan", "must be in [1e-6, 0.1]");
+    refused_at_value(
+        "page-turn",
+        "time_step = nan",
+        "solver.time_step must be in [1e-6, 0.1] seconds, not NaN",
+    );
+    refused_at_value(
+        "page-turn",
+        "time_step = 1e-7",
+        "solver.time_step must be in [1e-6, 0.1] seconds, not 1e-7",
+    );
     // A precision that does not exist is a serde error at the value.
     let (e, at) = refused("page-turn", "precision = \"f16\"");
     assert_eq!((e.line, e.column), (at, 13), "{e}");

@@ -4,17 +4,15 @@
 
 use core::fmt;
 
+use folio_kernels::SettingError;
+
 /// Why settings were rejected or a model could not be analysed.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum SolverError {
-    /// A setting is NaN, infinite or outside its documented range.
-    InvalidSetting {
-        /// The field of [`crate::Settings`].
-        field: &'static str,
-        /// What the field must be.
-        requirement: &'static str,
-    },
+    /// A setting is NaN, infinite or outside its documented range (the path is the field's
+    /// in [`crate::Settings`]).
+    InvalidSetting(SettingError),
     /// A term names a node the model does not have.
     NodeOutOfRange {
         /// Index of the term family in the model's visiting order.
@@ -58,9 +56,7 @@ pub enum SolverError {
 impl fmt::Display for SolverError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::InvalidSetting { field, requirement } => {
-                write!(f, "setting `{field}` must be {requirement}")
-            }
+            Self::InvalidSetting(e) => write!(f, "solver setting {e}"),
             Self::NodeOutOfRange {
                 family,
                 term,
@@ -101,3 +97,9 @@ impl fmt::Display for SolverError {
 }
 
 impl core::error::Error for SolverError {}
+
+impl From<SettingError> for SolverError {
+    fn from(e: SettingError) -> Self {
+        Self::InvalidSetting(e)
+    }
+}

@@ -20,8 +20,8 @@ use alloc::vec::Vec;
 
 use folio_kernels::math;
 
-use crate::error::{TearingError, check_range};
 use crate::fiber::FiberTexture;
+use folio_kernels::setting::{SettingError, require_range};
 
 /// Most pixels a [`Raster`] may have ($2^{26}$, 64 Mpx: two alpha masks of this size take
 /// 128 MiB).
@@ -45,36 +45,33 @@ impl Raster {
     /// pattern rectangle (sheet units). Pixels need not be square.
     ///
     /// # Errors
-    /// [`TearingError::OutOfRange`] for a zero pixel count or more than [`MAX_PIXELS`]
-    /// pixels (`"Raster.width_px"`, `"Raster.height_px"`, `"Raster.pixels"`);
-    /// [`TearingError::NonFinite`] or [`TearingError::OutOfRange`] for a sheet size that is
-    /// not in $(0, 10^6]$ (`"Raster.sheet_width"`, `"Raster.sheet_height"`).
+    /// A [`SettingError`] for a zero pixel count or more than [`MAX_PIXELS`] pixels
+    /// (`width_px`, `height_px`, `pixels`), or a sheet size that is not in $(0, 10^6]$
+    /// (`sheet_width`, `sheet_height`).
     pub fn new(
         width_px: u32,
         height_px: u32,
         sheet_width: f64,
         sheet_height: f64,
-    ) -> Result<Self, TearingError> {
+    ) -> Result<Self, SettingError> {
         let max = MAX_PIXELS as f64;
-        check_range("Raster.width_px", f64::from(width_px), 1.0, max)?;
-        check_range("Raster.height_px", f64::from(height_px), 1.0, max)?;
+        require_range("width_px", f64::from(width_px), 1.0, max)?;
+        require_range("height_px", f64::from(height_px), 1.0, max)?;
         let pixels = u64::from(width_px) * u64::from(height_px);
-        check_range("Raster.pixels", pixels as f64, 1.0, max)?;
-        check_range("Raster.sheet_width", sheet_width, 0.0, MAX_SHEET_EXTENT)?;
-        check_range("Raster.sheet_height", sheet_height, 0.0, MAX_SHEET_EXTENT)?;
-        if sheet_width <= 0.0 || sheet_height <= 0.0 {
-            let (field, value) = if sheet_width <= 0.0 {
-                ("Raster.sheet_width", sheet_width)
-            } else {
-                ("Raster.sheet_height", sheet_height)
-            };
-            return Err(TearingError::OutOfRange {
-                field,
-                value,
-                min: f64::MIN_POSITIVE,
-                max: MAX_SHEET_EXTENT,
-            });
-        }
+        require_range("pixels", pixels as f64, 1.0, max)?;
+        // Positive: from the smallest normal number up.
+        require_range(
+            "sheet_width",
+            sheet_width,
+            f64::MIN_POSITIVE,
+            MAX_SHEET_EXTENT,
+        )?;
+        require_range(
+            "sheet_height",
+            sheet_height,
+            f64::MIN_POSITIVE,
+            MAX_SHEET_EXTENT,
+        )?;
         Ok(Self {
             width_px,
             height_px,
@@ -234,11 +231,10 @@ impl DetailSettings {
     /// Checks both fields against their documented ranges.
     ///
     /// # Errors
-    /// [`TearingError::NonFinite`] or [`TearingError::OutOfRange`] naming
-    /// `"DetailSettings.weight"` or `"DetailSettings.sigma"`.
-    pub fn validate(&self) -> Result<(), TearingError> {
-        check_range("DetailSettings.weight", self.weight, 0.0, 1.0)?;
-        check_range("DetailSettings.sigma", self.sigma, 1e-9, 1e6)
+    /// `weight` or `sigma` out of its range, the range and the value.
+    pub fn validate(&self) -> Result<(), SettingError> {
+        require_range("weight", self.weight, 0.0, 1.0)?;
+        require_range("sigma", self.sigma, 1e-9, 1e6)
     }
 
     /// The settings moved into their ranges: each field clamped, a non-finite field
@@ -583,33 +579,11 @@ mod tests {
 
     #[test]
     fn raster_validation_and_mapping() {
-        assert!(matches!(
-            Raster::new(0, 4, 1.0, 1.0),
-            Err(TearingError::OutOfRange {
-                field: "Raster.width_px",
-                ..
-            })
-        ));
-        assert!(matches!(
-            Raster::new(1 << 14, 1 << 14, 1.0, 1.0),
-            Err(TearingError::OutOfRange {
-                field: "Raster.pixels",
-                ..
-            })
-        ));
-        assert!(matches!(
-            Raster::new(4, 4, 0.0, 1.0),
-            Err(TearingError::OutOfRange {
-                field: "Raster.sheet_width",
-                ..
-            })
-        ));
-        assert!(matches!(
-            Raster::new(4, 4, 1.0, f64::NAN),
-            Err(TearingError::NonFinite {
-                field: "Raster.sheet_height"
-            })
-        ));
+        let refused = |e: Result<Raster, SettingError>| e.unwrap_err().path.to_string();
+        assert_eq!(refused(Raster::new(0, 4, 1.0, 1.0)), "width_px");
+        assert_eq!(refused(Raster::new(1 << 14, 1 << 14, 1.0, 1.0)), "pixels");
+        assert_eq!(refused(Raster::new(4, 4, 0.0, 1.0)), "sheet_width");
+        assert_eq!(refused(Raster::new(4, 4, 1.0, f64::NAN)), "sheet_height");
         let r = Raster::new(4, 2, 2.0, 1.0).unwrap();
         assert_eq!(r.pixel_of([0.0, 0.0]), (0, 0));
         assert_eq!(r.pixel_of([2.0, 1.0]), (3, 1));

@@ -28,7 +28,7 @@
 use folio_kernels::math;
 use folio_kernels::splitmix::{GAMMA, mix64, unit_interval};
 
-use crate::error::{TearingError, check_range};
+use folio_kernels::setting::{SettingError, require_range};
 
 /// Most octaves [`FiberSettings::octaves`] accepts.
 pub const MAX_OCTAVES: u32 = 12;
@@ -85,21 +85,20 @@ impl FiberSettings {
     /// Checks every field against its documented range.
     ///
     /// # Errors
-    /// [`TearingError::NonFinite`] or [`TearingError::OutOfRange`] naming the first
-    /// offending field (`"FiberSettings.scale"`, ...).
-    pub fn validate(&self) -> Result<(), TearingError> {
-        check_range("FiberSettings.scale", self.scale, 1e-6, 1e6)?;
-        check_range(
-            "FiberSettings.octaves",
+    /// The first field out of its range (`scale`, ...), the range and the value.
+    pub fn validate(&self) -> Result<(), SettingError> {
+        require_range("scale", self.scale, 1e-6, 1e6)?;
+        require_range(
+            "octaves",
             f64::from(self.octaves),
             1.0,
             f64::from(MAX_OCTAVES),
         )?;
-        check_range("FiberSettings.aspect", self.aspect, 1.0, 64.0)?;
-        check_range("FiberSettings.direction", self.direction, -1e3, 1e3)?;
-        check_range("FiberSettings.lacunarity", self.lacunarity, 1.5, 4.0)?;
-        check_range("FiberSettings.gain", self.gain, 0.05, 1.0)?;
-        check_range("FiberSettings.contrast", self.contrast, 0.1, 16.0)
+        require_range("aspect", self.aspect, 1.0, 64.0)?;
+        require_range("direction", self.direction, -1e3, 1e3)?;
+        require_range("lacunarity", self.lacunarity, 1.5, 4.0)?;
+        require_range("gain", self.gain, 0.05, 1.0)?;
+        require_range("contrast", self.contrast, 0.1, 16.0)
     }
 }
 
@@ -131,7 +130,7 @@ impl FiberTexture {
     ///
     /// # Errors
     /// As [`FiberSettings::validate`].
-    pub fn new(settings: FiberSettings) -> Result<Self, TearingError> {
+    pub fn new(settings: FiberSettings) -> Result<Self, SettingError> {
         settings.validate()?;
         let mut octaves = [Octave::default(); MAX_OCTAVES as usize];
         let mut amplitude = 1.0;
@@ -469,38 +468,16 @@ mod tests {
 
     #[test]
     fn validate_names_the_field() {
-        let bad = |s: FiberSettings| FiberTexture::new(s).unwrap_err();
+        let bad = |s: FiberSettings| FiberTexture::new(s).unwrap_err().path.to_string();
         let d = FiberSettings::default();
-        assert!(matches!(
-            bad(FiberSettings { scale: 0.0, ..d }),
-            TearingError::OutOfRange {
-                field: "FiberSettings.scale",
-                ..
-            }
-        ));
-        assert!(matches!(
-            bad(FiberSettings { octaves: 0, ..d }),
-            TearingError::OutOfRange {
-                field: "FiberSettings.octaves",
-                ..
-            }
-        ));
-        assert!(matches!(
-            bad(FiberSettings {
-                aspect: f64::NAN,
-                ..d
-            }),
-            TearingError::NonFinite {
-                field: "FiberSettings.aspect"
-            }
-        ));
-        assert!(matches!(
-            bad(FiberSettings { gain: 2.0, ..d }),
-            TearingError::OutOfRange {
-                field: "FiberSettings.gain",
-                ..
-            }
-        ));
+        assert_eq!(bad(FiberSettings { scale: 0.0, ..d }), "scale");
+        assert_eq!(bad(FiberSettings { octaves: 0, ..d }), "octaves");
+        let nan = FiberSettings {
+            aspect: f64::NAN,
+            ..d
+        };
+        assert_eq!(bad(nan), "aspect");
+        assert_eq!(bad(FiberSettings { gain: 2.0, ..d }), "gain");
         assert!(d.validate().is_ok());
     }
 

@@ -14,7 +14,6 @@
 //! - [`detail`]: the stochastic detail path between two tear tips (Sec. 6.1, eq. 7).
 //! - [`texture`]: the left and right alpha textures cut along a detail path (Sec. 6.2).
 //! - [`settings`]: the settings of the tearing step, [`TearSettings`].
-//! - [`error`]: [`TearingError`], the typed error of the settings and rasters.
 //! - [`sheet`]: the sheet's physics: [`sheet::SheetModel`] (membranes, hinges, gravity,
 //!   fingers) stepped by `folio-solvers`, and [`sheet::TearingSheet`], a frame of physics,
 //!   cone remesh and tearing.
@@ -28,7 +27,6 @@ extern crate alloc;
 pub mod advance;
 pub mod candidates;
 pub mod detail;
-pub mod error;
 pub mod fiber;
 pub mod mixity;
 pub mod release;
@@ -40,7 +38,6 @@ pub mod texture;
 
 pub use advance::Edit;
 pub use candidates::{Candidate, Kind};
-pub use error::TearingError;
 pub use release::{LoadBuffers, TriangleLoads};
 pub use settings::{Estimator, TearSettings, TipRemesh};
 pub use split::Split;

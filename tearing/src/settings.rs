@@ -2,8 +2,8 @@
 //! units and the choices the seed leaves open.
 
 use crate::detail::DetailSettings;
-use crate::error::{TearingError, check_range};
 use crate::fiber::FiberSettings;
+use folio_kernels::setting::{SettingError, require_range};
 
 /// How the tearing step reads the load on a potential tearing point.
 #[cfg_attr(
@@ -138,43 +138,24 @@ impl TearSettings {
     /// Checks every field.
     ///
     /// # Errors
-    /// [`TearingError`] naming the first bad field.
-    pub fn validate(&self) -> Result<(), TearingError> {
-        check_range("TearSettings.thickness", self.thickness, 1e-9, 1e3)?;
-        check_range("TearSettings.disk_radius", self.disk_radius, 1e-6, 1e6)?;
-        check_range("TearSettings.fracture", self.fracture, 0.0, 1e12)?;
-        check_range("TearSettings.damage", self.damage, 0.0, 1.0)?;
-        check_range("TearSettings.speed", self.speed, 0.0, 1e6)?;
-        check_range("TearSettings.min_step", self.min_step, 1e-6, 1e6)?;
-        check_range("TearSettings.max_step", self.max_step, self.min_step, 1e6)?;
-        check_range("TearSettings.turn_threshold", self.turn_threshold, 0.0, 3.2)?;
-        check_range(
-            "TearSettings.bisector_tolerance",
-            self.bisector_tolerance,
-            0.0,
-            1.0,
-        )?;
-        check_range(
-            "TearSettings.max_candidates",
-            self.max_candidates as f64,
-            1.0,
-            1e4,
-        )?;
-        check_range("TearSettings.inward_angle", self.inward_angle, 0.0, 3.2)?;
-        check_range("TearSettings.snap", self.snap, 0.0, 0.3)?;
-        check_range(
-            "TearSettings.texture_density",
-            self.texture_density,
-            1.0,
-            4096.0,
-        )?;
-        check_range(
-            "TearSettings.reserved_tears",
-            self.reserved_tears as f64,
-            0.0,
-            64.0,
-        )?;
-        self.fibers.validate()?;
-        self.detail.validate()
+    /// The first field out of its range (`fibers.scale` for the fibers' and `detail.sigma`
+    /// for the detail path's), the range and the value.
+    pub fn validate(&self) -> Result<(), SettingError> {
+        require_range("thickness", self.thickness, 1e-9, 1e3)?;
+        require_range("disk_radius", self.disk_radius, 1e-6, 1e6)?;
+        require_range("fracture", self.fracture, 0.0, 1e12)?;
+        require_range("damage", self.damage, 0.0, 1.0)?;
+        require_range("speed", self.speed, 0.0, 1e6)?;
+        require_range("min_step", self.min_step, 1e-6, 1e6)?;
+        require_range("max_step", self.max_step, self.min_step, 1e6)?;
+        require_range("turn_threshold", self.turn_threshold, 0.0, 3.2)?;
+        require_range("bisector_tolerance", self.bisector_tolerance, 0.0, 1.0)?;
+        require_range("max_candidates", self.max_candidates as f64, 1.0, 1e4)?;
+        require_range("inward_angle", self.inward_angle, 0.0, 3.2)?;
+        require_range("snap", self.snap, 0.0, 0.3)?;
+        require_range("texture_density", self.texture_density, 1.0, 4096.0)?;
+        require_range("reserved_tears", self.reserved_tears as f64, 0.0, 64.0)?;
+        self.fibers.validate().map_err(|e| e.within("fibers"))?;
+        self.detail.validate().map_err(|e| e.within("detail"))
     }
 }

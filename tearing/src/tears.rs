@@ -38,13 +38,13 @@ use folio_kernels::{Real, Vec3Ops, math};
 use crate::advance::{Advance, Edit, advance, wedge};
 use crate::candidates::{Candidate, Kind, collect};
 use crate::detail::{Raster, detail_path};
-use crate::error::TearingError;
 use crate::fiber::FiberTexture;
 use crate::mixity::{kink_angle, mode_mixity};
 use crate::release::{TriangleLoads, cone_weights, configurational_force};
 use crate::settings::{Estimator, TearSettings, TipRemesh};
 use crate::split::{Pull, Split, split_forces, unit};
 use crate::texture::{AlphaPair, PathProfile, Side};
+use folio_kernels::SettingError;
 use folio_solvers::room::Room;
 
 /// Smallest pattern angle (radians, $1.75\pi$) of a boundary vertex that the disk estimator
@@ -254,8 +254,9 @@ impl<T: Real> Tears<T> {
     /// No tears yet, on a sheet whose pattern spans $[0, W] \times [0, H]$ (`size`).
     ///
     /// # Errors
-    /// [`TearingError`] for bad settings or size.
-    pub fn new(settings: TearSettings, size: [f64; 2]) -> Result<Self, TearingError> {
+    /// A [`SettingError`] for bad settings ([`TearSettings::validate`]) or a size the
+    /// texture raster refuses (`sheet_width`, `sheet_height`).
+    pub fn new(settings: TearSettings, size: [f64; 2]) -> Result<Self, SettingError> {
         settings.validate()?;
         let px = |x: f64| {
             // Ceiling without std: the truncation, plus one when it cut something off.

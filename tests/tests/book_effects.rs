@@ -346,9 +346,6 @@ fn glue_needs_the_blocks() {
     };
     assert!(matches!(
         Book::new(settings),
-        Err(BookError::InvalidSetting {
-            field: "effects.glue",
-            ..
-        })
+        Err(BookError::InvalidSetting(e)) if e.path.is("effects.glue")
     ));
 }

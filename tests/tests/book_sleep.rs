@@ -152,7 +152,7 @@ fn bad_sleep_settings_are_refused() {
         let mut s = BookSettings::<f64>::default();
         f(&mut s);
         match Book::new(s) {
-            Err(BookError::InvalidSetting { field, .. }) => field,
+            Err(BookError::InvalidSetting(e)) => e.path.to_string(),
             other => panic!("expected an invalid setting, got {other:?}"),
         }
     };

@@ -34,7 +34,7 @@ fn weights(t: [f64; 5]) -> Weights<f64> {
     let w: Vec<f64> = WEIGHT_RANGES
         .iter()
         .zip(t)
-        .map(|(&(_, lo, hi, _), t)| log_uniform(lo, hi, t))
+        .map(|(&(_, lo, hi), t)| log_uniform(lo, hi, t))
         .collect();
     Weights {
         bend_page: w[0],
@@ -230,7 +230,7 @@ fn a_soft_page_pulled_over_the_spine_stays_bounded() {
 
 #[test]
 fn log_uniform_covers_each_range() {
-    for &(name, lo, hi, _) in &WEIGHT_RANGES {
+    for &(name, lo, hi) in &WEIGHT_RANGES {
         assert_eq!(log_uniform(lo, hi, 1.0), hi, "{name}");
         let low = log_uniform(lo, hi, 0.0);
         assert!(low == lo || (lo == 0.0 && low == 0.0), "{name}");

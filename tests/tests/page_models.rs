@@ -453,9 +453,7 @@ fn the_xpbd_page_refuses_bad_settings() {
     ];
     for (field, s) in cases {
         match XpbdPage::new(s) {
-            Err(PageError::InvalidInput { what }) => {
-                assert!(what.starts_with(field), "{field}: {what}");
-            }
+            Err(PageError::InvalidSetting(e)) => assert_eq!(e.path.to_string(), field, "{e}"),
             other => panic!("{field}: {:?}", other.map(|_| ())),
         }
     }

@@ -210,7 +210,7 @@ fn bad_settings_get_typed_errors() {
     ];
     for (settings, name) in cases {
         match Solver::new(settings) {
-            Err(SolverError::InvalidSetting { field, .. }) => assert_eq!(field, name),
+            Err(SolverError::InvalidSetting(e)) => assert_eq!(e.path.to_string(), name),
             other => panic!("{name}: {other:?}"),
         }
     }

@@ -6,7 +6,11 @@
 
 use folio_kernels::Real;
 
-use crate::PageError;
+use folio_kernels::setting::{
+    SettingError, require, require_non_negative, require_positive, require_time_step,
+};
+
+use crate::require_page_size;
 
 /// Most particles per side: the sampler evaluates a Lagrange polynomial of degree up to
 /// $n - 1$ per direction ([`super::LagrangeSurface`]), whose equispaced barycentric weights
@@ -390,72 +394,70 @@ impl<T: Real> SpringSettings<T> {
         }
     }
 
-    /// Checks every field against its documented range.
+    /// Checks every field against its documented range, and the explicit integrator's
+    /// stability limits when it is chosen.
     ///
     /// # Errors
-    /// [`PageError::InvalidInput`] naming the first bad field.
-    pub fn validate(&self) -> Result<(), PageError> {
-        let bad = |what| Err(PageError::InvalidInput { what });
+    /// The first bad field, its rule and its value.
+    pub fn validate(&self) -> Result<(), SettingError> {
         let count = |n: usize| (2..=MAX_PARTICLES_PER_SIDE).contains(&n);
         let positive = |x: T| x.is_finite() && x > T::ZERO;
-        let non_negative = |x: T| x.is_finite() && x >= T::ZERO;
-        if !count(self.particles_across) {
-            return bad("particles_across (must be in 2..=64)");
+        let real = |x: T| x.to_f64();
+        for (field, n) in [
+            ("particles_across", self.particles_across),
+            ("particles_along", self.particles_along),
+        ] {
+            require(count(n), field, "from 2 to 64", n as f64)?;
         }
-        if !count(self.particles_along) {
-            return bad("particles_along (must be in 2..=64)");
+        require_page_size(self.width, self.height)?;
+        require_positive("particle_mass", real(self.particle_mass))?;
+        for (field, v) in [
+            ("stretch_stiffness", self.stretch_stiffness),
+            ("shear_stiffness", self.shear_stiffness),
+            ("bend_stiffness", self.bend_stiffness),
+            ("bending_stiffness", self.bending_stiffness),
+            ("particle_weight", self.particle_weight),
+        ] {
+            require_non_negative(field, real(v))?;
         }
-        if !positive(self.width) || self.width > T::COORD_MAX {
-            return bad("width (must be finite and > 0)");
-        }
-        if !positive(self.height) || self.height > T::COORD_MAX {
-            return bad("height (must be finite and > 0)");
-        }
-        if !positive(self.particle_mass) {
-            return bad("particle_mass (must be finite and > 0)");
-        }
-        if !non_negative(self.stretch_stiffness) {
-            return bad("stretch_stiffness (must be finite and >= 0)");
-        }
-        if !non_negative(self.shear_stiffness) {
-            return bad("shear_stiffness (must be finite and >= 0)");
-        }
-        if !non_negative(self.bend_stiffness) {
-            return bad("bend_stiffness (must be finite and >= 0)");
-        }
-        if !non_negative(self.bending_stiffness) {
-            return bad("bending_stiffness (must be finite and >= 0)");
-        }
-        if !(self.damping.is_finite() && self.damping <= T::ZERO) {
-            return bad("damping (must be finite and <= 0: the force is c v)");
-        }
-        if !non_negative(self.particle_weight) {
-            return bad("particle_weight (must be finite and >= 0)");
-        }
-        if !positive(self.time_step) {
-            return bad("time_step (must be finite and > 0)");
-        }
-        if !(1..=MAX_SUBSTEPS).contains(&self.substeps) {
-            return bad("substeps (must be in 1..=64)");
-        }
-        if !positive(self.key_frame_interval) {
-            return bad("key_frame_interval (must be finite and > 0)");
-        }
+        require(
+            self.damping.is_finite() && self.damping <= T::ZERO,
+            "damping",
+            "finite and <= 0 (the force is c v)",
+            real(self.damping),
+        )?;
+        require_time_step(real(self.time_step))?;
+        require(
+            (1..=MAX_SUBSTEPS).contains(&self.substeps),
+            "substeps",
+            "from 1 to 64",
+            f64::from(self.substeps),
+        )?;
+        require_positive("key_frame_interval", real(self.key_frame_interval))?;
         let spacing = self.spacing();
         let small = T::from_f64(1e-3);
-        if !(positive(spacing[0] * small) && positive(spacing[1] * small)) {
-            return bad("width or height (particle spacing underflows)");
-        }
-        if self.key_frame_capacity > MAX_KEY_FRAMES {
-            return bad("key_frame_capacity (at most 1000000)");
-        }
-        if self.interpolation_degree == 0 {
-            return bad("interpolation_degree (must be >= 1)");
-        }
+        require(
+            positive(spacing[0] * small) && positive(spacing[1] * small),
+            "width",
+            "large enough that the particle spacing (and a thousandth of it) does not \
+             underflow",
+            real(self.width),
+        )?;
+        require(
+            self.key_frame_capacity <= MAX_KEY_FRAMES,
+            "key_frame_capacity",
+            "at most 1000000",
+            self.key_frame_capacity as f64,
+        )?;
+        require(
+            self.interpolation_degree >= 1,
+            "interpolation_degree",
+            "at least 1",
+            self.interpolation_degree as f64,
+        )?;
         if let Some(tau) = self.strain_limit {
-            if !(tau.is_finite() && tau >= T::from_f64(0.02) && tau <= T::from_f64(0.08)) {
-                return bad("strain_limit (must be in [0.02, 0.08])");
-            }
+            let ok = tau.is_finite() && tau >= T::from_f64(0.02) && tau <= T::from_f64(0.08);
+            require(ok, "strain_limit", "in [0.02, 0.08]", real(tau))?;
         }
         if self.integrator == Integrator::SemiImplicitEuler {
             self.check_explicit()?;
@@ -469,33 +471,35 @@ impl<T: Real> SpringSettings<T> {
     /// page measures $\omega_{max}^2 = 3.3\sum k/m$), with the plate term and the lighter
     /// edge particles of [`SpringSettings::area_masses`] added as in
     /// [`super::bending::omega_squared_bound`], and the particle damping
-    /// $h\lvert c\rvert/m \le 1$ ($m/4$, a corner's, with area masses) (beyond it $v \mathrel{+}= h c v/m$ reverses the velocity
-    /// instead of slowing it). Settings past either limit were accepted before and made
-    /// every step blow up (and stall); they are refused here.
+    /// $h\lvert c\rvert/m \le 1$ ($m/4$, a corner's, with area masses) (beyond it
+    /// $v \mathrel{+}= h c v/m$ reverses the velocity instead of slowing it). Settings past
+    /// either limit were accepted before and made every step blow up (and stall); they are
+    /// refused here, at `substeps` (more substeps shorten $h$).
     ///
     /// # Errors
-    /// [`PageError::InvalidInput`] naming the limit crossed.
-    fn check_explicit(&self) -> Result<(), PageError> {
+    /// The limit crossed, at `substeps`.
+    fn check_explicit(&self) -> Result<(), SettingError> {
         let h = self.substep().to_f64();
         let lightest = if self.area_masses { 0.25 } else { 1.0 };
         let m = self.particle_mass.to_f64();
         let omega2 = self.omega_squared_bound();
         let spring_rate = h * folio_kernels::math::sqrt::<f64>(omega2);
-        if spring_rate.is_nan() || spring_rate > 2.0 {
-            return Err(PageError::InvalidInput {
-                what: "stiffness, particle_mass or time_step (the explicit integrator needs \
-                       (time_step / substeps) * sqrt(4 (k_stretch + k_shear + k_bend) / m) <= 2, \
-                       with the plate bending and area masses as in \
-                       spring::bending::omega_squared_bound)",
-            });
-        }
+        let substeps = f64::from(self.substeps);
+        require(
+            spring_rate <= 2.0,
+            "substeps",
+            "enough for the explicit integrator's springs: (time_step / substeps) * \
+             sqrt(4 (k_stretch + k_shear + k_bend) / m) <= 2, with the plate bending and \
+             area masses as in spring::bending::omega_squared_bound",
+            substeps,
+        )?;
         let damping_rate = h * -self.damping.to_f64() / (m * lightest);
-        if damping_rate.is_nan() || damping_rate > 1.0 {
-            return Err(PageError::InvalidInput {
-                what: "damping, particle_mass or time_step (the explicit integrator needs \
-                       (time_step / substeps) * |damping| / m <= 1)",
-            });
-        }
-        Ok(())
+        require(
+            damping_rate <= 1.0,
+            "substeps",
+            "enough for the explicit integrator's damping: (time_step / substeps) * \
+             |damping| / m <= 1",
+            substeps,
+        )
     }
 }

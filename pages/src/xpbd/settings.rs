@@ -15,7 +15,11 @@
 
 use folio_kernels::Real;
 
-use crate::PageError;
+use folio_kernels::setting::{
+    SettingError, require, require_non_negative, require_positive, require_time_step,
+};
+
+use crate::require_page_size;
 
 /// Most quads per side of the particle grid.
 pub const MAX_QUADS_PER_SIDE: usize = 256;
@@ -155,57 +159,46 @@ impl<T: Real> XpbdSettings<T> {
     /// substep) are finite and nonzero in `T`.
     ///
     /// # Errors
-    /// [`PageError::InvalidInput`] naming the first bad field.
-    pub fn validate(&self) -> Result<(), PageError> {
-        let bad = |what| Err(PageError::InvalidInput { what });
+    /// The first bad field, its rule and its value.
+    pub fn validate(&self) -> Result<(), SettingError> {
         let quads = |n: usize| (2..=MAX_QUADS_PER_SIDE).contains(&n);
-        let positive = |x: T| x.is_finite() && x > T::ZERO;
-        let non_negative = |x: T| x.is_finite() && x >= T::ZERO;
-        if !quads(self.quads_across) {
-            return bad("quads_across (must be in 2..=256)");
+        let real = |x: T| x.to_f64();
+        for (field, n) in [
+            ("quads_across", self.quads_across),
+            ("quads_along", self.quads_along),
+        ] {
+            require(quads(n), field, "from 2 to 256", n as f64)?;
         }
-        if !quads(self.quads_along) {
-            return bad("quads_along (must be in 2..=256)");
+        require_page_size(self.width, self.height)?;
+        require_positive("areal_density", real(self.areal_density))?;
+        for (field, v) in [
+            ("gravity", self.gravity),
+            ("bending_stiffness", self.bending_stiffness),
+            ("stretch_compliance", self.stretch_compliance),
+            ("shear_compliance", self.shear_compliance),
+            ("damping", self.damping),
+        ] {
+            require_non_negative(field, real(v))?;
         }
-        if !positive(self.width) || self.width > T::COORD_MAX {
-            return bad("width (must be finite and > 0)");
-        }
-        if !positive(self.height) || self.height > T::COORD_MAX {
-            return bad("height (must be finite and > 0)");
-        }
-        if !positive(self.areal_density) {
-            return bad("areal_density (must be finite and > 0)");
-        }
-        if !non_negative(self.gravity) {
-            return bad("gravity (must be finite and >= 0)");
-        }
-        if !non_negative(self.bending_stiffness) {
-            return bad("bending_stiffness (must be finite and >= 0)");
-        }
-        if !non_negative(self.stretch_compliance) {
-            return bad("stretch_compliance (must be finite and >= 0)");
-        }
-        if !non_negative(self.shear_compliance) {
-            return bad("shear_compliance (must be finite and >= 0)");
-        }
-        if !non_negative(self.damping) {
-            return bad("damping (must be finite and >= 0)");
-        }
-        if !positive(self.time_step) {
-            return bad("time_step (must be finite and > 0)");
-        }
-        if !(1..=MAX_SUBSTEPS).contains(&self.substeps) {
-            return bad("substeps (must be in 1..=1024)");
-        }
-        if !(1..=MAX_ITERATIONS).contains(&self.iterations) {
-            return bad("iterations (must be in 1..=64)");
-        }
+        require_time_step(real(self.time_step))?;
+        require(
+            (1..=MAX_SUBSTEPS).contains(&self.substeps),
+            "substeps",
+            "from 1 to 1024",
+            f64::from(self.substeps),
+        )?;
+        require(
+            (1..=MAX_ITERATIONS).contains(&self.iterations),
+            "iterations",
+            "from 1 to 64",
+            f64::from(self.iterations),
+        )?;
         self.check_derived()
     }
 
     /// The derived constants of [`XpbdSettings::validate`], computed in `f64` and required
     /// to be finite and nonzero once rounded to `T`.
-    fn check_derived(&self) -> Result<(), PageError> {
+    fn check_derived(&self) -> Result<(), SettingError> {
         let usable = |x: f64| {
             let t = T::from_f64(x);
             x.is_finite() && x > 0.0 && t.is_finite() && t > T::ZERO
@@ -215,41 +208,44 @@ impl<T: Real> XpbdSettings<T> {
         // The corner's quarter cell is the smallest mass; the Laplacian's largest weight.
         let corner_mass = self.areal_density.to_f64() * hx * hz / 4.0;
         let weight = 2.0 / (hx * hx) + 2.0 / (hz * hz);
-        if !(usable(hx) && usable(hz) && usable(1.0 / (hx * hx)) && usable(1.0 / (hz * hz))) {
-            return Err(PageError::InvalidInput {
-                what: "width or height (particle spacing or its inverse square not representable)",
-            });
-        }
-        if !(usable(corner_mass) && usable(1.0 / corner_mass)) {
-            return Err(PageError::InvalidInput {
-                what: "areal_density, width or height (particle masses not representable)",
-            });
-        }
-        if !(usable(h * h) && usable(weight * weight / corner_mass)) {
-            return Err(PageError::InvalidInput {
-                what: "time_step or substeps (substep squared or stencil weights not representable)",
-            });
-        }
+        require(
+            usable(hx) && usable(hz) && usable(1.0 / (hx * hx)) && usable(1.0 / (hz * hz)),
+            "width",
+            "such that the particle spacing and its inverse square are representable (with \
+             height)",
+            self.width.to_f64(),
+        )?;
+        require(
+            usable(corner_mass) && usable(1.0 / corner_mass),
+            "areal_density",
+            "such that the particle masses are representable (with width and height)",
+            self.areal_density.to_f64(),
+        )?;
+        require(
+            usable(h * h) && usable(weight * weight / corner_mass),
+            "substeps",
+            "such that the squared substep and the stencil weights are representable (with \
+             time_step)",
+            f64::from(self.substeps),
+        )?;
         let d = self.bending_stiffness.to_f64();
-        if d > 0.0 && !usable(1.0 / (d * corner_mass / self.areal_density.to_f64() * h * h)) {
-            return Err(PageError::InvalidInput {
-                what: "bending_stiffness (its compliance over the squared substep is not representable)",
-            });
-        }
-        for (what, alpha) in [
-            (
-                "stretch_compliance (over the squared substep not representable)",
-                self.stretch_compliance,
-            ),
-            (
-                "shear_compliance (over the squared substep not representable)",
-                self.shear_compliance,
-            ),
+        require(
+            d == 0.0 || usable(1.0 / (d * corner_mass / self.areal_density.to_f64() * h * h)),
+            "bending_stiffness",
+            "such that its compliance over the squared substep is representable",
+            d,
+        )?;
+        for (field, alpha) in [
+            ("stretch_compliance", self.stretch_compliance),
+            ("shear_compliance", self.shear_compliance),
         ] {
-            let a = alpha.to_f64() / (h * h);
-            if alpha > T::ZERO && !usable(a) {
-                return Err(PageError::InvalidInput { what });
-            }
+            let a = alpha.to_f64();
+            require(
+                a == 0.0 || usable(a / (h * h)),
+                field,
+                "such that it is representable over the squared substep",
+                a,
+            )?;
         }
         Ok(())
     }

@@ -2,8 +2,8 @@
 
 use core::fmt;
 
-use crate::TearingError;
 use folio_geometry::sheet::SheetError;
+use folio_kernels::SettingError;
 
 use folio_solvers::error::SolverError;
 
@@ -11,16 +11,10 @@ use folio_solvers::error::SolverError;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum TearingSheetError {
-    /// A setting of [`super::SheetSettings`] is NaN, infinite or out of range.
-    InvalidSetting {
-        /// The field, as a path from [`super::SheetSettings`] (`"width"`,
-        /// `"cones.flip_margin"`).
-        field: &'static str,
-        /// The rule its value breaks (`"finite and > 0"`, `"between 1 and 64"`).
-        rule: &'static str,
-    },
-    /// The tearing settings were refused.
-    Tearing(TearingError),
+    /// A setting of [`super::SheetSettings`] is NaN, infinite or out of range; the path is
+    /// the field's from [`super::SheetSettings`] (`width`, `cones.flip_margin`,
+    /// `tearing.fibers.scale`).
+    InvalidSetting(SettingError),
     /// The sheet mesh was refused or an edit failed.
     Mesh(SheetError),
     /// The solver refused the sheet's model.
@@ -49,10 +43,7 @@ pub enum TearingSheetError {
 impl fmt::Display for TearingSheetError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::InvalidSetting { field, rule } => {
-                write!(f, "sheet setting `{field}` must be {rule}")
-            }
-            Self::Tearing(e) => write!(f, "tearing settings: {e}"),
+            Self::InvalidSetting(e) => write!(f, "sheet setting {e}"),
             Self::Mesh(e) => write!(f, "sheet mesh: {e}"),
             Self::Solver(e) => write!(f, "solver: {e}"),
             Self::Kernel { index } => write!(f, "element {index} of the sheet is degenerate"),
@@ -77,5 +68,11 @@ impl From<SheetError> for TearingSheetError {
 impl From<SolverError> for TearingSheetError {
     fn from(e: SolverError) -> Self {
         Self::Solver(e)
+    }
+}
+
+impl From<SettingError> for TearingSheetError {
+    fn from(e: SettingError) -> Self {
+        Self::InvalidSetting(e)
     }
 }

@@ -18,7 +18,7 @@ use folio_geometry::sheet::{NONE, next_half_edge};
 use folio_kernels::gravity::Gravity;
 use folio_kernels::hinge::Hinge;
 use folio_kernels::membrane::Membrane;
-use folio_kernels::{Potential, Real};
+use folio_kernels::{Potential, Real, SettingError};
 
 use super::error::TearingSheetError;
 use super::settings::SheetSettings;
@@ -234,12 +234,8 @@ impl<T: Real> Terms<T> {
         }
         if settings.effects.gravity {
             for (i, &m) in self.masses.iter().enumerate() {
-                let term = Gravity::new(settings.gravity, m).map_err(|_| {
-                    TearingSheetError::InvalidSetting {
-                        field: "gravity",
-                        rule: "finite",
-                    }
-                })?;
+                let term = Gravity::new(settings.gravity, m)
+                    .map_err(|_| SettingError::new("gravity", "finite"))?;
                 self.gravity.push(term, [i as u32]);
             }
         }

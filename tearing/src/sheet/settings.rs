@@ -11,7 +11,9 @@ use folio_geometry::sheet::ConeSettings;
 use folio_kernels::Real;
 use folio_kernels::membrane::MembraneLaw;
 
-use super::error::TearingSheetError;
+use folio_kernels::setting::{
+    SettingError, require, require_non_negative, require_positive, require_range, require_time_step,
+};
 
 /// The effects a tearing scene may call for; what is off builds no term and does no work.
 #[cfg_attr(
@@ -29,6 +31,39 @@ pub struct SheetEffects {
     pub cones: bool,
     /// Tearing (seed `002_…`).
     pub tearing: bool,
+}
+
+impl SheetEffects {
+    /// Every effect of the tearing sheet by its scene name, in the order scenes and reports
+    /// list them: the one list of the names.
+    pub const NAMES: [&'static str; 4] = ["gravity", "bending", "cones", "tearing"];
+
+    /// None at all: the bare membrane.
+    pub const NONE: Self = Self {
+        gravity: false,
+        bending: false,
+        cones: false,
+        tearing: false,
+    };
+
+    /// Switches the effect named `name` on; `false` for a name that is none of
+    /// [`SheetEffects::NAMES`].
+    pub fn enable(&mut self, name: &str) -> bool {
+        let flags = [
+            &mut self.gravity,
+            &mut self.bending,
+            &mut self.cones,
+            &mut self.tearing,
+        ];
+        let at = Self::NAMES.iter().position(|n| *n == name);
+        match at.and_then(|i| flags.into_iter().nth(i)) {
+            Some(flag) => {
+                *flag = true;
+                true
+            }
+            None => false,
+        }
+    }
 }
 
 impl Default for SheetEffects {
@@ -166,66 +201,73 @@ impl<T: Real> SheetSettings<T> {
     /// Checks every field.
     ///
     /// # Errors
-    /// [`TearingSheetError::InvalidSetting`] naming the first bad field.
-    pub fn validate(&self) -> Result<(), TearingSheetError> {
-        let positive = |x: T| x.is_finite() && x > T::ZERO;
-        let check = |ok: bool, field: &'static str, rule: &'static str| {
-            if ok {
-                Ok(())
-            } else {
-                Err(TearingSheetError::InvalidSetting { field, rule })
-            }
-        };
-        let (finite_positive, grid) = ("finite and > 0", "between 1 and 64");
-        check(positive(self.width), "width", finite_positive)?;
-        check(positive(self.height), "height", finite_positive)?;
-        check((1..=64).contains(&self.nx), "nx", grid)?;
-        check((1..=64).contains(&self.ny), "ny", grid)?;
-        check(
-            positive(self.stretch_modulus),
-            "stretch_modulus",
-            finite_positive,
-        )?;
-        check(
-            self.poisson.is_finite() && self.poisson >= T::ZERO && self.poisson < T::HALF,
+    /// The first bad field by its path from these settings (`nx`, `cones.flip_margin`,
+    /// `tearing.fibers.scale`), its rule and its value.
+    pub fn validate(&self) -> Result<(), SettingError> {
+        let real = |x: T| x.to_f64();
+        for (field, v) in [
+            ("width", self.width),
+            ("height", self.height),
+            ("stretch_modulus", self.stretch_modulus),
+            ("density", self.density),
+        ] {
+            require_positive(field, real(v))?;
+        }
+        for (field, n) in [("nx", self.nx), ("ny", self.ny)] {
+            require((1..=64).contains(&n), field, "from 1 to 64", n as f64)?;
+        }
+        let poisson = self.poisson;
+        require(
+            poisson.is_finite() && poisson >= T::ZERO && poisson < T::HALF,
             "poisson",
             "in [0, 0.5)",
+            real(poisson),
         )?;
-        check(
-            self.bending.is_finite() && self.bending >= T::ZERO,
-            "bending",
-            "finite and >= 0",
-        )?;
-        check(positive(self.density), "density", finite_positive)?;
-        check(self.gravity.is_finite(), "gravity", "finite")?;
-        check(positive(self.time_step), "time_step", finite_positive)?;
-        check(
-            self.finger_radius.is_finite()
-                && self.finger_radius >= T::ZERO
-                && self.finger_radius <= self.width + self.height,
+        require_non_negative("bending", real(self.bending))?;
+        let gravity = real(self.gravity);
+        require(gravity.is_finite(), "gravity", "finite", gravity)?;
+        require_time_step(real(self.time_step))?;
+        let r = self.finger_radius;
+        require(
+            r.is_finite() && r >= T::ZERO && r <= self.width + self.height,
             "finger_radius",
             "finite, >= 0 and at most width + height",
+            real(r),
         )?;
-        check(
+        require(
             self.max_propagations <= 64,
             "max_propagations",
             "at most 64",
+            f64::from(self.max_propagations),
         )?;
-        check(
+        require(
             self.reserved_vertices <= 1 << 20,
             "reserved_vertices",
             "at most 1 048 576",
+            self.reserved_vertices as f64,
         )?;
-        check(
-            self.cones.flat_curvature.is_finite() && self.cones.flat_curvature >= T::ZERO,
-            "cones.flat_curvature",
-            "finite and >= 0",
-        )?;
-        check(
-            self.cones.flip_margin >= T::ZERO && self.cones.flip_margin <= T::ONE,
-            "cones.flip_margin",
-            "in [0, 1]",
-        )?;
-        self.tearing.validate().map_err(TearingSheetError::Tearing)
+        let c = &self.cones;
+        require_non_negative("cones.flat_curvature", real(c.flat_curvature))?;
+        require_range("cones.flip_margin", real(c.flip_margin), 0.0, 1.0)?;
+        self.tearing.validate().map_err(|e| e.within("tearing"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::SheetEffects;
+
+    /// Each name switches on its own flag and no other.
+    #[test]
+    fn each_name_is_its_own_flag() {
+        let flags = |e: SheetEffects| [e.gravity, e.bending, e.cones, e.tearing];
+        for (i, name) in SheetEffects::NAMES.into_iter().enumerate() {
+            let mut e = SheetEffects::NONE;
+            assert!(e.enable(name), "{name}");
+            let on = flags(e);
+            assert!(on[i] && on.iter().filter(|f| **f).count() == 1, "{name}");
+        }
+        let mut none = SheetEffects::NONE;
+        assert!(!none.enable("glue"));
     }
 }

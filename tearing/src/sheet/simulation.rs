@@ -122,7 +122,7 @@ impl<T: Real> TearingSheet<T> {
             ..Settings::default()
         })?;
         let size = [settings.width.to_f64(), settings.height.to_f64()];
-        let tears = Tears::new(settings.tearing, size).map_err(TearingSheetError::Tearing)?;
+        let tears = Tears::new(settings.tearing, size).map_err(|e| e.within("tearing"))?;
         let state = State {
             x: mesh.positions().to_vec(),
             v: mesh.velocities().to_vec(),

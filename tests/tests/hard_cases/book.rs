@@ -322,13 +322,7 @@ fn every_effect_combination() {
         let made = Book::new(s);
         if s.effects.glue && !s.effects.blocks {
             assert!(
-                matches!(
-                    made,
-                    Err(BookError::InvalidSetting {
-                        field: "effects.glue",
-                        ..
-                    })
-                ),
+                matches!(made, Err(BookError::InvalidSetting(e)) if e.path.is("effects.glue")),
                 "{bits:06b}"
             );
             continue;
@@ -352,7 +346,7 @@ fn every_effect_combination() {
 fn weight_range_corners_stay_bounded() {
     for corner in 0u32..32 {
         let pick = |k: usize| {
-            let (_, lo, hi, _) = WEIGHT_RANGES[k];
+            let (_, lo, hi) = WEIGHT_RANGES[k];
             if corner & (1 << k) == 0 { lo } else { hi }
         };
         let mut s = BookSettings::<f64>::default();
@@ -387,7 +381,7 @@ fn weights_outside_their_ranges_are_refused() {
         let mut s = BookSettings::<f64>::default();
         set(&mut s);
         match Book::new(s) {
-            Err(BookError::InvalidSetting { field: f, .. }) => assert_eq!(f, field),
+            Err(BookError::InvalidSetting(e)) => assert_eq!(e.path.to_string(), field),
             other => panic!("{field}: {other:?}"),
         }
     }

@@ -98,7 +98,9 @@ fn a_page_width_of_1e300_is_refused_in_scientific_notation() {
     let e = refused(&events("page_width = 1e300", "[11.0, 1.0]"));
     assert_eq!((e.line, e.column), (4, 14), "{e}");
     assert!(
-        e.message.contains("1e300 exceeds 120000") && e.message.len() < 120,
+        e.message
+            .contains("must be at most 1.2e5 page units, not 1e300")
+            && e.message.len() < 120,
         "{e}"
     );
 }
@@ -195,7 +197,7 @@ fn the_c_api_refuses_every_time_step_a_scene_refuses() {
         let (status, message) = create(&s);
         assert_eq!(status, FolioStatus::InvalidArgument, "{h:e}");
         assert!(
-            message.contains("time_step must be in [1e-6, 0.1]") && message.len() < 150,
+            message.contains("`time_step` must be in [1e-6, 0.1] seconds") && message.len() < 150,
             "{h:e}: {message}"
         );
     }
@@ -224,7 +226,7 @@ fn the_c_api_refuses_the_page_sizes_a_scene_refuses() {
                 page_thickness: 4e-320,
                 ..d
             },
-            "page_thickness 4e-320 is too thin",
+            "`page_thickness` must be at least 1.2e-5 (1e-6 of the page width",
         ),
         (
             "page_width = 1e-9",
@@ -240,7 +242,7 @@ fn the_c_api_refuses_the_page_sizes_a_scene_refuses() {
                 page_width: 1e300,
                 ..d
             },
-            "1e300 exceeds 120000",
+            "`page_width` must be at most 1.2e5 page units, not 1e300",
         ),
         (
             "total_pages = 100001",
@@ -249,7 +251,7 @@ fn the_c_api_refuses_the_page_sizes_a_scene_refuses() {
                 left_pages: 0,
                 ..d
             },
-            "total_pages must be between 1 and 100000",
+            "`total_pages` must be from 1 to 100000, not 100001",
         ),
     ];
     for (key, s, word) in cases {
@@ -268,7 +270,8 @@ fn the_c_api_refuses_the_page_sizes_a_scene_refuses() {
 
 /// A mass-spring scene whose time step (1/60 s, one substep) is within the scene's range
 /// but past the explicit integrator's stability limit, $h\,\omega_{max} \le 2$, is refused
-/// when the scene is read, at its `[solver]` table, naming the limit; the stable 1/60 s
+/// when the scene is read, at its `substeps` (more substeps are the cure), naming the
+/// limit; the stable 1/60 s
 /// with the default substeps is accepted.
 #[test]
 fn a_spring_time_step_past_the_explicit_limit_is_refused() {
@@ -279,9 +282,9 @@ fn a_spring_time_step_past_the_explicit_limit_is_refused() {
         )
     };
     let e = refused(&scene("time_step = 0.016666666666666666\nsubsteps = 1"));
-    assert_eq!((e.line, e.column), (4, 1), "{e}");
+    assert_eq!((e.line, e.column), (6, 12), "{e}");
     assert!(
-        e.message.contains("explicit integrator needs") && e.message.contains("<= 2"),
+        e.message.contains("explicit integrator's springs") && e.message.contains("<= 2"),
         "{e}"
     );
     Scene::parse(&scene("time_step = 0.016666666666666666")).expect("the default step");

@@ -151,9 +151,8 @@ fn cone_half_angle_below_its_range_is_refused() {
     };
     assert!(matches!(
         ConePage::new(s),
-        Err(PageError::InvalidInput {
-            what: "cone fit_theta_min (must be in [0.01, pi/2])"
-        })
+        Err(PageError::InvalidSetting(e))
+            if e.to_string() == "`fit_theta_min` must be in [0.01, pi/2], not 0.001"
     ));
 }
 
@@ -206,7 +205,8 @@ fn spring_drag_along_the_spine_past_the_page() {
 
 /// Settings past the explicit integrator's stability limit (a 15 fps frame with the book
 /// page's stiff springs, $(h/n)\omega_{max} = 6.3$) used to be accepted and every step blew up
-/// and stalled. Asserts a typed `InvalidInput` error at construction.
+/// and stalled. Asserts a typed refusal at construction, at `substeps` (more substeps are
+/// the cure).
 #[test]
 fn spring_explicit_step_past_its_stability_limit_is_refused() {
     let s = SpringSettings::<f64> {
@@ -215,7 +215,7 @@ fn spring_explicit_step_past_its_stability_limit_is_refused() {
     };
     assert!(matches!(
         SpringPage::new(s),
-        Err(PageError::InvalidInput { .. })
+        Err(PageError::InvalidSetting(e)) if e.path.is("substeps")
     ));
     let implicit = SpringSettings {
         integrator: Integrator::ImplicitEuler,
