@@ -52,7 +52,7 @@ fn table<T: Real>(name: &str, settings: BookSettings<T>, script: &Script) {
         row(label, &pick(&|i| f64::from(count(i))));
     }
     let after = pick(&|i| r[i].correction.after.to_f64());
-    let tolerance = settings.constraint_tolerance.to_f64();
+    let tolerance = settings.projection_tolerance.to_f64();
     println!(
         "projection left max|C| above its tolerance {tolerance:.0e} in {} frames (worst {:.1e})",
         after.iter().filter(|&&c| c > tolerance).count(),

@@ -110,7 +110,7 @@ pub fn variants() -> [(&'static str, BookSettings<f64>); 5] {
     let mut hessian = BookSettings::default();
     hessian.solver.constraint_hessian = true;
     let plain = BookSettings {
-        max_corrections: 0,
+        projection_iterations: 0,
         ..BookSettings::default()
     };
     let seed = BookSettings {

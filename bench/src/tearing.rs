@@ -9,7 +9,7 @@
 //! `folio_tearing::sheet::TearingSheet::step` builds it.
 
 use folio_geometry::SheetMesh;
-use folio_geometry::sheet::{ConeLayer, ConeSettings};
+use folio_geometry::sheet::{ConeLayer, ConeLayerSettings};
 use folio_kernels::Real;
 use folio_tearing::Estimator;
 use folio_tearing::sheet::{FrameReport, HingeBending, SheetEffects, SheetSettings, TearingSheet};
@@ -192,7 +192,7 @@ pub struct ConeInputs {
     /// The layer.
     pub layer: ConeLayer<f64>,
     /// The thresholds.
-    pub settings: ConeSettings<f64>,
+    pub settings: ConeLayerSettings<f64>,
 }
 
 impl ConeInputs {

@@ -72,7 +72,7 @@ impl<T: Real> Book<T> {
     /// stayed on its block (50 turns back and forth: turn 2 did not turn).
     fn project(&mut self) -> Result<Correction<T>, BookError> {
         let s = &self.settings;
-        let (tol, max) = (s.constraint_tolerance, s.max_corrections);
+        let (tol, max) = (s.projection_tolerance, s.projection_iterations);
         let pins = Pins {
             nodes: &self.pushed,
             normals: &self.pushed_normal,

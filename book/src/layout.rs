@@ -27,9 +27,7 @@ pub type Point2 = [f64; 2];
 )]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BookParams {
-    /// Pages in the book (leaves: one sheet is one page here), at least 1. Scene files
-    /// also accept the older key `pages`.
-    #[cfg_attr(feature = "serde", serde(alias = "pages"))]
+    /// Pages in the book (leaves: one sheet is one page here), at least 1.
     pub total_pages: u32,
     /// Pages in the left block (the rest are in the right block), at most `total_pages`.
     pub left_pages: u32,
@@ -38,9 +36,7 @@ pub struct BookParams {
     /// Page height over page width (the seed scales the height by the book's aspect ratio;
     /// Folio's default is ISO 216's $\sqrt 2$).
     pub aspect_ratio: f64,
-    /// Thickness of one page (page units; 0.0075 in the seed). Scene files also accept the
-    /// older key `thickness`.
-    #[cfg_attr(feature = "serde", serde(alias = "thickness"))]
+    /// Thickness of one page (page units; 0.0075 in the seed).
     pub page_thickness: f64,
     /// Hard cover present.
     pub cover: bool,

@@ -531,8 +531,9 @@ FolioStatus folio_book_destroy(struct FolioBookHandle handle);
 /**
  * Creates a book from the text of a scene file (TOML, the format of `docs/scenes.md`, as
  * `folio check` reads it) and writes its handle to `*out`. The scene must name
- * `model = "dog"`. Its `[book]`, `effects`, `[weights]` and `[solver]` define the book,
- * simulated in the scene's `solver.precision` (double by default); its input, frames,
+ * `model = "dog"`. Its `[book]` (every field of the book's settings, by its name:
+ * `[book.params]`, `[book.weights]`, `[book.solver]`, `quads_across`, ...) and `effects`
+ * define the book, simulated in the scene's `precision` (double by default); its input, frames,
  * outputs and expectations are checked but not used: the caller drives the book with
  * grab, drag, release and step. The smallest
  * scene is `name = "s"`, `model = "dog"`, `input = { fixture = "page-turn" }`.

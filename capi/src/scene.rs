@@ -2,9 +2,9 @@
 
 use core::ffi::{CStr, c_char};
 
-use folio_book::Book;
+use folio_book::{Book, BookSettings};
 use folio_scene::scene::{ModelKind, Precision, Scene};
-use folio_scene::settings::book_settings;
+use folio_scene::settings::{SceneReal, book_settings};
 
 use crate::any_book::AnyBook;
 use crate::create::register;
@@ -19,10 +19,16 @@ fn invalid(message: impl Into<String>) -> Failure {
     Failure::new(FolioStatus::InvalidScene, message)
 }
 
+/// The scene's book in precision `T`.
+fn settings<T: SceneReal>(scene: &Scene) -> Result<BookSettings<T>, Failure> {
+    book_settings(scene).map_err(|e| invalid(e.to_string()))
+}
+
 /// Creates a book from the text of a scene file (TOML, the format of `docs/scenes.md`, as
 /// `folio check` reads it) and writes its handle to `*out`. The scene must name
-/// `model = "dog"`. Its `[book]`, `effects`, `[weights]` and `[solver]` define the book,
-/// simulated in the scene's `solver.precision` (double by default); its input, frames,
+/// `model = "dog"`. Its `[book]` (every field of the book's settings, by its name:
+/// `[book.params]`, `[book.weights]`, `[book.solver]`, `quads_across`, ...) and `effects`
+/// define the book, simulated in the scene's `precision` (double by default); its input, frames,
 /// outputs and expectations are checked but not used: the caller drives the book with
 /// grab, drag, release and step. The smallest
 /// scene is `name = "s"`, `model = "dog"`, `input = { fixture = "page-turn" }`.
@@ -65,8 +71,8 @@ pub unsafe extern "C" fn folio_book_create_from_scene(
             }
         };
         let book = match scene.precision() {
-            Precision::F64 => AnyBook::F64(Book::new(book_settings(&scene)).map_err(refused)?),
-            Precision::F32 => AnyBook::F32(Book::new(book_settings(&scene)).map_err(refused)?),
+            Precision::F64 => AnyBook::F64(Book::new(settings(&scene)?).map_err(refused)?),
+            Precision::F32 => AnyBook::F32(Book::new(settings(&scene)?).map_err(refused)?),
         };
         // SAFETY: `out` was checked non-NULL and aligned above; writable by contract.
         unsafe { register(book, out) }

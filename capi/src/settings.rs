@@ -2,7 +2,7 @@
 //! `BookSettings`.
 
 use folio_book::{BookSettings, Effects};
-use folio_kernels::{Real, SettingError, Shown};
+use folio_kernels::{Real, SettingError};
 
 use crate::failure::Failure;
 use crate::guard;
@@ -182,11 +182,7 @@ fn refusal(e: &SettingError) -> String {
         .iter()
         .find_map(|section| path.strip_prefix(section))
         .unwrap_or(&path);
-    let not = e
-        .value
-        .map(|v| format!(", not {}", Shown(v)))
-        .unwrap_or_default();
-    format!("`{field}` must be {}{not}", e.requirement)
+    e.named(field).to_string()
 }
 
 /// Writes the default settings (each field's docs give its default) to `*out`.

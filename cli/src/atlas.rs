@@ -73,7 +73,7 @@ pub struct Row {
     pub label: String,
     /// The page model.
     pub model: String,
-    /// The `[solver]` keys it sets.
+    /// The scene keys it sets.
     pub knobs: BTreeMap<String, toml::Value>,
     /// Why it could not run (its scene was refused or its model did not start).
     pub refused: Option<String>,
@@ -141,9 +141,9 @@ pub const CONVERGENCE_GRIDS: [[i64; 2]; 3] = [[6, 8], [12, 16], [24, 32]];
 /// The knobs of `variant` as a map.
 fn knobs(variant: &Variant) -> BTreeMap<String, toml::Value> {
     variant
-        .solver
+        .keys
         .iter()
-        .map(|(k, v)| ((*k).to_string(), v.clone()))
+        .map(|(k, v)| (k.clone(), v.clone()))
         .collect()
 }
 

@@ -11,7 +11,6 @@
 //! its own bounds in `[expect]` (`max_stretch`, `dog_residual_max`, `penetration_max`,
 //! `failed_steps`).
 
-use folio_book::BookParams;
 use folio_scene::number::{short, show};
 use folio_scene::scene::Scene;
 
@@ -29,12 +28,7 @@ impl Bounds {
     #[must_use]
     pub fn of(scene: &Scene) -> Self {
         let e = &scene.expect;
-        let thickness = scene
-            .book
-            .as_ref()
-            .map_or(BookParams::default().page_thickness, |b| {
-                b.get_ref().page_thickness
-            });
+        let thickness = scene.page_thickness();
         Self {
             max_stretch: e.max_stretch.unwrap_or(MAX_STRETCH),
             dog_residual: e.dog_residual_max.unwrap_or(DOG_RESIDUAL),

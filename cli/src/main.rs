@@ -92,9 +92,15 @@ fn main() -> ExitCode {
 ///
 /// # Errors
 /// The message, with the error's place.
+/// Its older keys ([`folio_scene::legacy`]) are read, each with a warning on stderr that
+/// names the new key.
 fn read_scene(file: &str) -> Result<Scene, String> {
     let bytes = std::fs::read(file).map_err(|e| format!("{file}: {e}"))?;
-    Scene::parse_bytes(&bytes).map_err(|e| format!("{file}: {e}"))
+    let scene = Scene::parse_bytes(&bytes).map_err(|e| format!("{file}: {e}"))?;
+    for notice in &scene.notices {
+        eprintln!("{file}: warning: {notice}");
+    }
+    Ok(scene)
 }
 
 /// Checks every file; prints `ok` or the error with its place.

@@ -66,17 +66,14 @@ impl Outputs {
         let is_sheet = *scene.model.get_ref() == ModelKind::Sheet;
         let mut settings = SheetSettings::default();
         let bounds = if is_sheet {
-            settings.paper.thickness = folio_scene::settings::sheet_settings(scene)
-                .tearing
-                .thickness as f32;
+            let sheet = folio_scene::settings::sheet_settings(scene).map_err(fail)?;
+            settings.paper.thickness = sheet.tearing.thickness as f32;
             settings.eye = SHEET_EYE;
             settings.light = SHEET_LIGHT;
-            sheet_bounds(folio_scene::sheet::size(scene))
+            sheet_bounds([sheet.width, sheet.height])
         } else {
             // The book's paper (its default is the renderer's 0.0075 too).
-            if let Some(book) = &scene.book {
-                settings.paper.thickness = book.get_ref().page_thickness as f32;
-            }
+            settings.paper.thickness = scene.page_thickness() as f32;
             let [w, h] = scene.page_size();
             book_bounds(w, h)
         };

@@ -15,7 +15,7 @@ use folio_pages::{Gestures, PageError, PageModel, PageStatus, TouchScript, frame
 
 use folio_scene::clock;
 use folio_scene::events;
-use folio_scene::settings::{book_settings, spring_settings, xpbd_settings};
+use folio_scene::settings::{SceneReal, book_settings, spring_settings, xpbd_settings};
 
 use folio_scene::fixtures::{self, Kind};
 use folio_scene::scene::{ModelKind, Precision, Scene};
@@ -59,7 +59,7 @@ fn touch_input(scene: &Scene) -> Result<Option<(Gestures, bool)>, RunError> {
 /// ([`crate::health`]); an input that does nothing or a step that fails is recorded in its
 /// frame, and the run goes on. A frame is [`clock::FRAME_SECONDS`] of model time: its inputs
 /// apply, then the model takes the frame's steps ([`folio_scene::clock`]). The model runs in
-/// the scene's precision (`solver.precision`).
+/// the scene's precision (`precision`).
 ///
 /// # Errors
 /// A model or input the scene describes but that refuses to start (settings the model
@@ -87,12 +87,12 @@ type Run = (Vec<FrameRecord>, Option<[u32; 3]>);
 
 /// A page model of `scene` in precision `T` for touch input: the DOG page (kept by type: its
 /// book measures the page and counts the pages), else another model behind the trait.
-enum Page<T: Real> {
+enum Page<T: SceneReal> {
     Dog(Box<DogPage<T>>),
     Other(Box<dyn PageModel<T>>),
 }
 
-impl<T: Real> Page<T> {
+impl<T: SceneReal> Page<T> {
     fn new(scene: &Scene, seed: bool) -> Result<Self, RunError> {
         Ok(match *scene.model.get_ref() {
             ModelKind::Cone => {
@@ -103,15 +103,16 @@ impl<T: Real> Page<T> {
                 Self::Other(Box::new(ConePage::new(s).map_err(fail)?))
             }
             ModelKind::MassSpring => {
-                let s = spring_settings::<T>(scene, seed);
+                let s = spring_settings::<T>(scene, seed).map_err(fail)?;
                 Self::Other(Box::new(SpringPage::new(s).map_err(fail)?))
             }
             ModelKind::Xpbd => {
-                let s = xpbd_settings::<T>(scene, seed);
+                let s = xpbd_settings::<T>(scene, seed).map_err(fail)?;
                 Self::Other(Box::new(XpbdPage::new(s).map_err(fail)?))
             }
             ModelKind::Dog => {
-                Self::Dog(Box::new(DogPage::new(book_settings(scene)).map_err(fail)?))
+                let s = book_settings(scene).map_err(fail)?;
+                Self::Dog(Box::new(DogPage::new(s).map_err(fail)?))
             }
             other => return Err(fail(format!("no touch run for the {} model", other.name()))),
         })
@@ -134,13 +135,13 @@ impl<T: Real> Page<T> {
 
 /// The model time step $h$ (seconds) of a page model of `scene`; `None` for the cone,
 /// which has no step (one per frame).
-fn page_time_step(scene: &Scene, seed: bool) -> Option<f64> {
-    match *scene.model.get_ref() {
-        ModelKind::Dog => Some(book_settings::<f64>(scene).solver.time_step),
-        ModelKind::MassSpring => Some(spring_settings::<f64>(scene, seed).time_step),
-        ModelKind::Xpbd => Some(xpbd_settings::<f64>(scene, seed).time_step),
+fn page_time_step(scene: &Scene, seed: bool) -> Result<Option<f64>, RunError> {
+    Ok(match *scene.model.get_ref() {
+        ModelKind::Dog => Some(book_settings::<f64>(scene).map_err(fail)?.solver.time_step),
+        ModelKind::MassSpring => Some(spring_settings::<f64>(scene, seed).map_err(fail)?.time_step),
+        ModelKind::Xpbd => Some(xpbd_settings::<f64>(scene, seed).map_err(fail)?.time_step),
         _ => None,
-    }
+    })
 }
 
 /// The steps frame `frame` takes at time step `h` (one per frame without a step).
@@ -208,14 +209,14 @@ fn advance_frame<S>(
 }
 
 /// Runs a page model in precision `T` through touch input `(script, seed)`.
-fn run_touch<T: Real>(
+fn run_touch<T: SceneReal>(
     scene: &Scene,
     (script, seed): (Gestures, bool),
     mut progress: impl FnMut(u32, u32),
     mut observe: impl FnMut(u32, u32, Shape<'_>),
 ) -> Result<Run, RunError> {
     let mut page = Page::<T>::new(scene, seed)?;
-    let h = page_time_step(scene, seed);
+    let h = page_time_step(scene, seed)?;
     let grid = QuadGrid::new(RENDER_QUADS.0, RENDER_QUADS.1).ok_or_else(|| fail("grid"))?;
     let mut samples = vec![T::Vec3::ZERO; grid.len()];
     let mut records = Vec::new();
@@ -291,7 +292,7 @@ fn run_touch<T: Real>(
 }
 
 /// Runs the DOG book in precision `T` through the scene's book fixture.
-fn run_book<T: Real>(
+fn run_book<T: SceneReal>(
     scene: &Scene,
     mut progress: impl FnMut(u32, u32),
     mut observe: impl FnMut(u32, u32, Shape<'_>),
@@ -311,7 +312,7 @@ fn run_book<T: Real>(
             }
         }
     }
-    let mut book = Book::<T>::new(book_settings(scene)).map_err(fail)?;
+    let mut book = Book::<T>::new(book_settings(scene).map_err(fail)?).map_err(fail)?;
     let h = Some(book.settings().solver.time_step.to_f64());
     let mut records = Vec::new();
     let n = frames(scene, script.frames);

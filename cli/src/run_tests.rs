@@ -17,13 +17,9 @@ fn scene(text: &str) -> Scene {
 fn a_run_whose_book_refuses_its_settings_is_an_error() {
     let mut s = scene(
         "name = \"dt\"\nmodel = \"dog\"\nframes = 5\ninput = { fixture = \"page-turn\" }\n\
-         [solver]\ntime_step = 0.01\n",
+         [book.solver]\ntime_step = 0.01\n",
     );
-    let h = s
-        .solver
-        .as_mut()
-        .and_then(|s| s.get_mut().time_step.as_mut());
-    *h.expect("a time step").get_mut() = 1e-300;
+    s.source = s.source.replace("time_step = 0.01", "time_step = 1e-300");
     let e = run(&s, |_, _| {}, |_, _, _| {}).expect_err("refused");
     assert!(
         e.0.contains("`solver.time_step` must be in [1e-6, 0.1] seconds, not 1e-300"),
@@ -37,10 +33,11 @@ fn a_run_whose_book_refuses_its_settings_is_an_error() {
 fn a_grab_that_misses_is_reported_at_its_frame() {
     let mut s = scene(
         "name = \"miss\"\nmodel = \"dog\"\nframes = 32\ninput = { fixture = \"page-turn\" }\n\
-         [book]\ntotal_pages = 100\n",
+         [book.params]\ntotal_pages = 100\n",
     );
-    let book = s.book.as_mut().expect("a book").get_mut();
-    (book.total_pages, book.left_pages) = (100_000, 50_000);
+    s.source = s
+        .source
+        .replace("total_pages = 100\n", "total_pages = 100000\n");
     let report = run(&s, |_, _| {}, |_, _, _| {}).expect("runs");
     assert_eq!(
         report.frames[30].inputs,
@@ -54,10 +51,10 @@ fn a_grab_that_misses_is_reported_at_its_frame() {
     assert!(!report.good());
 }
 
-/// The built-in page turn with `[solver]` lines added before its `[expect]`.
+/// The built-in page turn with `[book.solver]` lines added before its `[expect]`.
 fn page_turn_with(solver: &str) -> Scene {
     let base = folio_scene::builtin::scene("page-turn").expect("the page turn");
-    let text = base.replace("[expect]", &format!("[solver]\n{solver}\n\n[expect]"));
+    let text = base.replace("[expect]", &format!("[book.solver]\n{solver}\n\n[expect]"));
     scene(&text)
 }
 
@@ -87,12 +84,9 @@ fn a_half_time_step_takes_two_steps_a_frame_and_turns_the_page() {
 /// `f64`, and the report names the precision.
 #[test]
 fn an_f32_page_turn_turns_the_page() {
-    let report = run(
-        &page_turn_with("precision = \"f32\""),
-        |_, _| {},
-        |_, _, _| {},
-    )
-    .expect("runs");
+    let base = folio_scene::builtin::scene("page-turn").expect("the page turn");
+    let f32_turn = scene(&base.replace("[expect]", "precision = \"f32\"\n[expect]"));
+    let report = run(&f32_turn, |_, _| {}, |_, _, _| {}).expect("runs");
     assert_eq!(report.precision, "f32");
     assert_eq!(report.frames.len(), 750);
     assert!(
@@ -110,7 +104,7 @@ fn an_f32_page_turn_turns_the_page() {
 #[test]
 fn an_f32_page_model_runs_and_is_drawn() {
     let base = folio_scene::builtin::scene("xpbd-turn").expect("the xpbd turn");
-    let text = format!("{}\n[solver]\nprecision = \"f32\"\n", base.trim_end());
+    let text = base.replacen("\n[", "\nprecision = \"f32\"\n\n[", 1);
     let (mut meshes, mut points) = (0, Vec::new());
     let grid = folio_geometry::QuadGrid::new(4, 5).expect("a grid");
     let report = run(

@@ -355,6 +355,43 @@ fn check_accepts_the_shipped_scenes_and_the_documented_examples() {
         .collect();
     let out = folio(&dir, &args);
     assert!(out.status.success(), "{}", text(&out.stderr));
+    // They use today's keys: no warning about an older one.
+    assert!(
+        !text(&out.stderr).contains("warning"),
+        "{}",
+        text(&out.stderr)
+    );
+}
+
+/// A scene in the older keys (before the keys were the settings' field names) still checks,
+/// and `check` says, at each older key, which key it is now.
+#[test]
+fn an_older_key_checks_with_a_warning_naming_the_new_key() {
+    let dir = scratch("older");
+    let file = dir.join("old.toml");
+    std::fs::write(
+        &file,
+        "name = \"old\"\nmodel = \"dog\"\ninput = { fixture = \"page-turn\" }\n\
+         [solver]\ngrid = [6, 8]\nmax_corrections = 2\n",
+    )
+    .unwrap();
+    let out = folio(&dir, &["check", &file.display().to_string()]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let said = text(&out.stderr);
+    assert!(
+        said.contains(
+            "line 5, column 8: `solver.grid` is the older spelling of \
+                       `book.quads_across` and `book.quads_along`"
+        ),
+        "{said}"
+    );
+    assert!(
+        said.contains(
+            "line 6, column 19: `solver.max_corrections` is the older spelling of \
+                       `book.projection_iterations`"
+        ),
+        "{said}"
+    );
 }
 
 #[test]

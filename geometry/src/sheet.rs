@@ -22,7 +22,7 @@ pub mod quality;
 mod rollback;
 mod scratch;
 
-pub use cones::{ConeLayer, ConeSettings, Region};
+pub use cones::{ConeLayer, ConeLayerSettings, Region};
 pub use edit::Cut;
 pub use error::SheetError;
 pub use mesh::{

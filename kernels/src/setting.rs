@@ -173,13 +173,36 @@ impl SettingError {
     }
 }
 
-impl fmt::Display for SettingError {
+impl SettingError {
+    /// The refusal in the words of a reader who knows the field by another name `key` (a
+    /// scene file's `book.params.page_width`, a C struct's `page_width`): "`key` must be RULE, not VALUE",
+    /// the one wording of a refused setting.
+    #[must_use]
+    pub fn named<K: fmt::Display>(&self, key: K) -> Named<'_, K> {
+        Named { error: self, key }
+    }
+}
+
+/// A [`SettingError`] under the name its reader knows the field by ([`SettingError::named`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Named<'a, K> {
+    error: &'a SettingError,
+    key: K,
+}
+
+impl<K: fmt::Display> fmt::Display for Named<'_, K> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "`{}` must be {}", self.path, self.requirement)?;
-        if let Some(v) = self.value {
+        write!(f, "`{}` must be {}", self.key, self.error.requirement)?;
+        if let Some(v) = self.error.value {
             write!(f, ", not {}", Shown(v))?;
         }
         Ok(())
+    }
+}
+
+impl fmt::Display for SettingError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.named(self.path).fmt(f)
     }
 }
 

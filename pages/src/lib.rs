@@ -35,6 +35,8 @@ pub mod cone;
 #[cfg(feature = "dog")]
 pub mod dog;
 pub mod gestures;
+#[cfg(any(feature = "mass-spring", feature = "xpbd"))]
+mod hold;
 pub mod metrics;
 #[cfg(feature = "mass-spring")]
 pub mod spring;

@@ -117,24 +117,10 @@ pub use settings::{
 };
 pub use sync::Synchronizer;
 
-use super::{PageError, PageModel, PageStatus, PageStep, check_finger, check_grab};
+use super::{PageError, PageModel, PageStatus, PageStep, check_grab};
+use crate::hold::{self, Hold, all_in_range};
 use folio_solvers::step::State;
 use network::zeros;
-
-/// The held material point and the finger.
-#[derive(Clone, Copy, Debug)]
-struct Hold<T: Real> {
-    /// Material point $(u, v)$.
-    at: [T; 2],
-    /// Its rest position $P = (u, 0, v)$, mirrored to $(-u, 0, v)$ for a page held on the
-    /// left.
-    rest_point: T::Vec3,
-    /// The page was taken on the left: the gripped particles' rest positions are mirrored
-    /// across the spine, $(x, y, z) \to (-x, y, z)$.
-    mirrored: bool,
-    /// The finger, once dragged.
-    finger: Option<T::Vec3>,
-}
 
 /// The mass-spring page (module docs).
 #[derive(Clone, Debug)]
@@ -350,9 +336,7 @@ impl<T: Real> SpringPage<T> {
     /// $(x_k^{target} - x_k^{start})/h$; zero velocity while the finger has not moved yet.
     fn place_gripped(&mut self, s: u32, n: u32) {
         let h = self.settings.time_step;
-        let mut shift = self
-            .hold
-            .and_then(|hold| hold.finger.map(|f| f - hold.rest_point));
+        let mut shift = self.hold.and_then(|hold| hold.displacement());
         let mirrored = self.hold.is_some_and(|hold| hold.mirrored);
         if let (Some(d), Some(limit)) = (shift, self.limit.as_ref()) {
             let rho = T::ONE + limit.limit() * T::HALF;
@@ -500,12 +484,6 @@ impl<T: Real> SpringPage<T> {
     }
 }
 
-/// Every coordinate finite and within [`Real::COORD_MAX`].
-fn all_in_range<T: Real>(x: &[T::Vec3]) -> bool {
-    let ok = |c: T| c.is_finite() && c <= T::COORD_MAX && -c <= T::COORD_MAX;
-    x.iter().all(|p| ok(p.x()) && ok(p.y()) && ok(p.z()))
-}
-
 impl<T: Real> PageModel<T> for SpringPage<T> {
     fn name(&self) -> &'static str {
         "mass-spring"
@@ -538,42 +516,24 @@ impl<T: Real> PageModel<T> for SpringPage<T> {
                 self.gripped.push(k as u32);
             }
         }
-        self.hold = Some(Hold {
-            at,
-            rest_point: T::Vec3::new(at[0], T::ZERO, at[1]),
-            mirrored: false,
-            finger: None,
-        });
+        self.hold = Some(Hold::new(at));
         self.reanalyse();
         Ok(())
     }
 
     /// The one page again where it lies (left of the spine when its particles' mean X is
-    /// negative): on the left the grip's rest positions are mirrored across the spine, so
+    /// negative); on the left the grip's rest positions are mirrored across the spine, so
     /// that a finger starting at $(-u, 0, v)$ holds the page where it lies. A grab on the
     /// other side, or of a stack, is refused.
     fn grab_page(&mut self, side: BlockSide, pages: u32, at: [T; 2]) -> Result<(), PageError> {
-        super::one_page(pages)?;
-        if side != super::lying_side::<T>(&self.state.x) {
-            return Err(PageError::Gesture(super::GestureError::NoPage {
-                side,
-                model: "mass-spring",
-            }));
-        }
+        hold::check_side::<T>("mass-spring", &self.state.x, side, pages)?;
         self.grab(at)?;
-        if let Some(hold) = self.hold.as_mut().filter(|_| side == BlockSide::Left) {
-            hold.mirrored = true;
-            hold.rest_point = T::Vec3::new(-at[0], T::ZERO, at[1]);
-        }
+        hold::taken_from(&mut self.hold, side);
         Ok(())
     }
 
     fn drag(&mut self, finger: T::Vec3) -> Result<(), PageError> {
-        check_finger::<T>(finger)?;
-        if let Some(hold) = self.hold.as_mut() {
-            hold.finger = Some(finger);
-        }
-        Ok(())
+        hold::drag(&mut self.hold, finger)
     }
 
     fn release(&mut self) {

@@ -93,10 +93,8 @@ use folio_kernels::{Real, Vec3Ops, math};
 pub use constraints::{Bending, Distance, dual_area};
 pub use settings::{MAX_ITERATIONS, MAX_QUADS_PER_SIDE, MAX_SUBSTEPS, Spine, XpbdSettings};
 
-use super::{
-    GestureError, PageError, PageModel, PageStatus, PageStep, check_finger, check_grab,
-    material_point,
-};
+use super::{PageError, PageModel, PageStatus, PageStep, check_grab, material_point};
+use crate::hold::{self, Hold, all_in_range};
 
 /// Slack $\tau_r$ of the finger's reach (module docs, "Touch"): a gripped particle stays
 /// within $1 + \tau_r$ of its rest distance to every spine particle.
@@ -104,19 +102,6 @@ pub const REACH_SLACK: f64 = 0.01;
 
 /// A gripped particle carries more than this share of the grab point's bilinear weight.
 const GRIP_WEIGHT: f64 = 1e-3;
-
-/// The held material point and the finger.
-#[derive(Clone, Copy, Debug)]
-struct Hold<T: Real> {
-    /// Material point $(u, v)$.
-    at: [T; 2],
-    /// Its rest position $P$, mirrored for a page taken on the left.
-    rest_point: T::Vec3,
-    /// The page was taken on the left.
-    mirrored: bool,
-    /// The finger, once dragged.
-    finger: Option<T::Vec3>,
-}
 
 /// The position-based page (module docs).
 #[derive(Clone, Debug)]
@@ -384,7 +369,7 @@ impl<T: Real> XpbdPage<T> {
     /// (module docs), or `None` while the finger has not moved.
     fn shift(&mut self) -> Option<(T::Vec3, bool)> {
         let hold = self.hold?;
-        let d = hold.finger? - hold.rest_point;
+        let d = hold.displacement()?;
         let s = self.reach(d, hold.mirrored);
         if s < T::ONE {
             self.out_of_reach = true;
@@ -468,12 +453,6 @@ impl<T: Real> XpbdPage<T> {
     }
 }
 
-/// Every coordinate finite and within [`Real::COORD_MAX`].
-fn all_in_range<T: Real>(x: &[T::Vec3]) -> bool {
-    let ok = |c: T| c.is_finite() && c <= T::COORD_MAX && -c <= T::COORD_MAX;
-    x.iter().all(|p| ok(p.x()) && ok(p.y()) && ok(p.z()))
-}
-
 impl<T: Real> PageModel<T> for XpbdPage<T> {
     fn name(&self) -> &'static str {
         "xpbd"
@@ -502,41 +481,23 @@ impl<T: Real> PageModel<T> for XpbdPage<T> {
                 self.gripped.push(k as u32);
             }
         }
-        self.hold = Some(Hold {
-            at,
-            rest_point: T::Vec3::new(at[0], T::ZERO, at[1]),
-            mirrored: false,
-            finger: None,
-        });
+        self.hold = Some(Hold::new(at));
         Ok(())
     }
 
     /// The one page again where it lies (left of the spine when its particles' mean X is
     /// negative); on the left the grip's rest positions are mirrored across the spine, so
-    /// a finger starting at $(-u, 0, v)$ holds the page where it lies. A grab on the other
-    /// side, or of a stack, is refused.
+    /// that a finger starting at $(-u, 0, v)$ holds the page where it lies. A grab on the
+    /// other side, or of a stack, is refused.
     fn grab_page(&mut self, side: BlockSide, pages: u32, at: [T; 2]) -> Result<(), PageError> {
-        super::one_page(pages)?;
-        if side != super::lying_side::<T>(&self.x) {
-            return Err(PageError::Gesture(GestureError::NoPage {
-                side,
-                model: "xpbd",
-            }));
-        }
+        hold::check_side::<T>("xpbd", &self.x, side, pages)?;
         self.grab(at)?;
-        if let Some(hold) = self.hold.as_mut().filter(|_| side == BlockSide::Left) {
-            hold.mirrored = true;
-            hold.rest_point = T::Vec3::new(-at[0], T::ZERO, at[1]);
-        }
+        hold::taken_from(&mut self.hold, side);
         Ok(())
     }
 
     fn drag(&mut self, finger: T::Vec3) -> Result<(), PageError> {
-        check_finger::<T>(finger)?;
-        if let Some(hold) = self.hold.as_mut() {
-            hold.finger = Some(finger);
-        }
-        Ok(())
+        hold::drag(&mut self.hold, finger)
     }
 
     fn release(&mut self) {

@@ -1,15 +1,14 @@
-//! The book a DOG scene describes (`[book]`, `[weights]`, `[solver]`, `effects`): checked
-//! by the book's own [`BookSettings::validate`] (the one the C API uses), each refusal
+//! The book a DOG scene describes (`[book]`, a [`folio_book::BookSettings`], and `effects`): checked
+//! by the book's own [`folio_book::BookSettings::validate`] (the one the C API uses), each refusal
 //! reported at the scene key that set it. Whether the scene's first grab can touch the page
 //! is `crate::reach` (feature `fixture-reach`).
 
 use core::ops::Range;
 
-use folio_book::BookSettings;
-use folio_kernels::{SettingError, Shown};
+use folio_kernels::SettingError;
 use toml::Spanned;
 
-use crate::scene::Scene;
+use crate::scene::{Scene, SceneError};
 use crate::settings::book_settings;
 
 pub use folio_book::MAX_PAGES;
@@ -17,56 +16,9 @@ pub use folio_book::MAX_PAGES;
 /// A refusal: the span of the scene key at fault, and why.
 pub(crate) type Problem = (Range<usize>, String);
 
-/// The fields of [`BookSettings`] a scene sets under another key (`[book]` is the field
-/// `params`; `[solver]` also holds the book's own iteration counts and its grid).
-const SCENE_KEYS: [(&str, &str); 5] = [
-    ("solver.tolerance", "solver.newton_tolerance"),
-    ("quads_across", "solver.grid"),
-    ("quads_along", "solver.grid"),
-    ("collision_rounds", "solver.collision_rounds"),
-    ("max_corrections", "solver.max_corrections"),
-];
-
-/// The scene keys of [`folio_book::BookParams`] that older scene files spell differently
-/// (serde aliases), or whose value another key sets (the page height is
-/// `aspect_ratio` x `page_width`), so that an error finds the key the file wrote.
-const OTHER_SPELLINGS: [(&str, &str); 3] = [
-    ("book.total_pages", "book.pages"),
-    ("book.page_thickness", "book.thickness"),
-    ("book.aspect_ratio", "book.page_width"),
-];
-
-/// The scene key of the field at `e`'s path in [`BookSettings`].
-fn scene_key(e: &SettingError) -> String {
-    let path = e.path.to_string();
-    if let Some((_, key)) = SCENE_KEYS.iter().find(|(field, _)| *field == path) {
-        (*key).to_string()
-    } else if let Some(field) = path.strip_prefix("params.") {
-        format!("book.{field}")
-    } else {
-        path
-    }
-}
-
-/// Where `key` (or another spelling of it) sits in the scene, else `[book]`.
-fn span(scene: &Scene, key: &str) -> Range<usize> {
-    let other = OTHER_SPELLINGS
-        .iter()
-        .find(|(new, _)| *new == key)
-        .map(|(_, old)| *old);
-    [Some(key), other]
-        .into_iter()
-        .flatten()
-        .find_map(|k| scene.keys.span(k))
-        .unwrap_or_else(|| scene.book.as_ref().map_or(0..0, Spanned::span))
-}
-
-/// The book's refusal `e` at the scene key that set the field, in the scene's words.
+/// The book's refusal `e` at the scene key that set the field (`book.` and its path in
+/// [`folio_book::BookSettings`]), or at the effect.
 fn problem(scene: &Scene, e: &SettingError) -> Problem {
-    let not = e
-        .value
-        .map(|v| format!(", not {}", Shown(v)))
-        .unwrap_or_default();
     if e.path.segments().first() == Some(&"effects") {
         let name = e.path.field();
         let list = scene.effects.as_ref();
@@ -77,26 +29,22 @@ fn problem(scene: &Scene, e: &SettingError) -> Problem {
             .unwrap_or(0..0);
         return (at, format!("effect `{name}` must be {}", e.requirement));
     }
-    let key = scene_key(e);
-    let message = format!("{key} must be {}{not}", e.requirement);
-    (span(scene, &key), message)
+    crate::settings::refusal(scene, "book", e)
 }
 
-/// Checks a DOG scene's book: `cover` is an effect, then the book `folio run` builds is
-/// held to [`BookSettings::validate`] (the one the C API uses), at the key that set the
+/// Checks a DOG scene's book: the book `folio run` builds is held to [`folio_book::BookSettings::validate`] (the one the C API uses), at the key that set the
 /// refused value.
 ///
 /// # Errors
-/// The span of the refused key and why.
-pub fn check(scene: &Scene) -> Result<(), Problem> {
-    if let Some(at) = scene.keys.span("book.cover") {
-        return Err((
-            at,
-            "book.cover: a scene writes it as the `cover` effect".into(),
-        ));
-    }
-    let settings: BookSettings<f64> = book_settings(scene);
-    settings.validate().map_err(|e| problem(scene, &e))
+/// A key that is no field of [`folio_book::BookSettings`], or a refused value, at its place.
+pub fn check(scene: &Scene) -> Result<(), SceneError> {
+    // In `f64` whatever the run's precision, as the book was checked before its keys were
+    // its settings' fields: the ranges are the same numbers in both (reading the book in
+    // `f32` too would link a second reader of every field into the browser build).
+    book_settings::<f64>(scene)?.validate().map_err(|e| {
+        let (span, message) = problem(scene, &e);
+        scene.error(span, message)
+    })
 }
 
 #[cfg(test)]
@@ -113,57 +61,92 @@ mod tests {
     #[test]
     fn the_book_types_are_the_scene_keys() {
         let scene = Scene::parse(&format!(
-            "{DOG}[book]\ntotal_pages = 40\naspect_ratio = 1.5\n[weights]\nglue = 300.0\n"
+            "{DOG}[book]\nquads_across = 6\nprojection_iterations = 2\n\
+             [book.params]\ntotal_pages = 40\naspect_ratio = 1.5\n\
+             [book.weights]\nglue = 300.0\n[book.solver]\ntolerance = 1e-5\n"
         ))
         .unwrap();
-        let s = crate::settings::book_settings::<f32>(&scene);
+        assert!(scene.notices.is_empty(), "{:?}", scene.notices);
+        let s = crate::settings::book_settings::<f32>(&scene).unwrap();
+        let defaults = folio_book::BookSettings::<f32>::default();
         assert_eq!((s.params.total_pages, s.params.left_pages), (40, 20));
         assert_eq!(s.params.aspect_ratio, 1.5);
         assert_eq!(s.weights.glue, 300.0_f32);
-        assert_eq!(s.weights.pull, folio_book::Weights::<f32>::default().pull);
-        // The older spellings still read.
+        assert_eq!(s.weights.pull, defaults.weights.pull);
+        assert_eq!((s.quads_across, s.projection_iterations), (6, 2));
+        // One key of [book.solver] keeps the book's other solver defaults (not the solver's).
+        assert_eq!(s.solver.tolerance, 1e-5);
+        assert_eq!(s.solver.merit_slack, defaults.solver.merit_slack);
+        assert_eq!(
+            s.solver.refinement_tolerance,
+            defaults.solver.refinement_tolerance
+        );
+        // The older spellings still read, each with a notice naming its new key.
         let old = Scene::parse(&format!("{DOG}[book]\npages = 10\nthickness = 0.01\n")).unwrap();
-        let p = crate::settings::book_settings::<f64>(&old).params;
+        let p = crate::settings::book_settings::<f64>(&old).unwrap().params;
         assert_eq!(
             (p.total_pages, p.left_pages, p.page_thickness),
             (10, 5, 0.01)
+        );
+        let said: Vec<_> = old
+            .notices
+            .iter()
+            .map(|n| (n.line, n.message.as_str()))
+            .collect();
+        assert_eq!(said.len(), 2, "{said:?}");
+        assert_eq!(said[0].0, 5);
+        assert!(said[0].1.contains("`book.params.total_pages`"), "{said:?}");
+        assert!(
+            said[1].1.contains("`book.params.page_thickness`"),
+            "{said:?}"
         );
     }
 
     #[test]
     fn a_refused_book_is_reported_at_its_key() {
-        let (line, column, message) = refused("[book]\npage_width = 1e300\n");
+        let (line, column, message) = refused("[book.params]\npage_width = 1e300\n");
         assert_eq!((line, column), (5, 14), "{message}");
         assert_eq!(
             message,
-            "book.page_width must be at most 1.2e5 page units, not 1e300"
+            "`book.params.page_width` must be at most 1.2e5 page units, not 1e300"
         );
+        // An older key is refused where the file wrote it, by its new name.
         let (line, column, message) = refused("[book]\nthickness = -1.0\n");
         assert_eq!((line, column), (5, 13), "{message}");
         assert_eq!(
             message,
-            "book.page_thickness must be finite and > 0, not -1"
+            "`book.params.page_thickness` must be finite and > 0, not -1"
         );
-        let (line, _, message) = refused("[book]\ncover_overhang = -0.5\n");
+        let (line, _, message) = refused("[book.params]\ncover_overhang = -0.5\n");
         assert_eq!(line, 5, "{message}");
-        let (line, column, message) = refused("[book]\ncover = false\n");
+        let (line, column, message) = refused("[book.params]\ncover = false\n");
         assert_eq!((line, column), (5, 9), "{message}");
         assert!(message.contains("`cover` effect"), "{message}");
-        let (line, column, message) = refused("[book]\nmidline_nodes = 2\n");
+        // A table is placed at its header.
+        let (line, column, message) = refused("[book.effects]\nglue = false\n");
+        assert_eq!((line, column), (4, 1), "{message}");
+        assert!(message.contains("`effects` list"), "{message}");
+        let (line, column, message) = refused("[book.params]\nmidline_nodes = 2\n");
         assert_eq!((line, column), (5, 17), "{message}");
         assert!(message.contains("midline"), "{message}");
-        let (line, column, message) = refused("[weights]\nglue = 2e9\n");
+        let (line, column, message) = refused("[book.weights]\nglue = 2e9\n");
         assert_eq!((line, column), (5, 8), "{message}");
         assert!(
-            message.starts_with("weights.glue must be in ["),
+            message.starts_with("`book.weights.glue` must be in ["),
             "{message}"
         );
         // Inside [0, 1e9] but outside the range the book holds (issue 20).
         let (line, column, message) = refused("[weights]\npull = 1e9\n");
         assert_eq!((line, column), (5, 8), "{message}");
         assert!(
-            message.starts_with("weights.pull must be in ["),
+            message.starts_with("`book.weights.pull` must be in ["),
             "{message}"
         );
+        // A field the file does not set, refused for another's sake: at its section.
+        let (line, _, message) = refused("[book]\nquads_across = 60000\n");
+        assert_eq!(line, 5, "{message}");
+        let (line, column, message) = refused("[book]\ncolour = 1\n");
+        assert_eq!((line, column), (5, 1), "{message}");
+        assert!(message.contains("unknown field `colour`"), "{message}");
     }
 }

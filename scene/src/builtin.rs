@@ -53,7 +53,7 @@ mod tests {
         let turn = Scene::parse(super::scene("page-turn").expect("built in")).expect("parses");
         assert_eq!(mcu.precision(), Precision::F32);
         assert_eq!(
-            book_settings::<f32>(&mcu),
+            book_settings::<f32>(&mcu).expect("reads"),
             BookSettings::<f32>::microcontroller()
         );
         let fixture = |s: &Scene| {

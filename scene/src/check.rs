@@ -6,14 +6,13 @@
 
 use core::ops::Range;
 
-use folio_kernels::{SettingError, Shown};
+use folio_kernels::SettingError;
 use toml::Spanned;
-use toml::de::DeTable;
 
-use crate::keys::{self, KeySpans};
+use crate::keys::KeySpans;
 use crate::reader::{self, ReadError};
 use crate::scene::{
-    GRID_RANGE, ModelKind, Precision, Scene, SceneError, SolverSection, all_effects, line_column,
+    ModelKind, Precision, Scene, SceneError, SceneNotice, all_effects, line_column,
 };
 
 impl Scene {
@@ -48,14 +47,29 @@ impl Scene {
     /// The first problem, at its line and column: TOML syntax, an unknown key or model, a
     /// wrong type, a value out of range, an input that does not fit the model.
     pub fn parse(text: &str) -> Result<Self, SceneError> {
-        let syntax = |e: toml::de::Error| SceneError::at(text, e.span(), e.message().trim());
         let schema = |e: ReadError| SceneError::at(text, e.span, e.message.trim());
-        let mut doc = DeTable::parse(text).map_err(syntax)?;
-        let notch = keys::take(&mut doc, "sheet", "notch");
-        let keys = KeySpans::of(doc.get_ref());
-        let mut scene: Self = reader::read_table(doc).map_err(schema)?;
-        scene.notch = notch.map(reader::read).transpose().map_err(schema)?;
+        let document = crate::settings::document(text)?;
+        let keys = KeySpans::of(document.doc.get_ref());
+        let mut scene: Self = reader::read_table(document.doc).map_err(schema)?;
+        scene.notch = document
+            .notch
+            .map(reader::read)
+            .transpose()
+            .map_err(schema)?;
         scene.keys = keys;
+        scene.source = text.to_string();
+        scene.notices = document
+            .notices
+            .into_iter()
+            .map(|n| {
+                let (line, column) = line_column(text, n.span.start);
+                SceneNotice {
+                    line,
+                    column,
+                    message: n.message,
+                }
+            })
+            .collect();
         scene.check(text)?;
         Ok(scene)
     }
@@ -115,23 +129,50 @@ impl Scene {
                 );
             }
         }
-        if let Some(book) = &self.book {
-            if model != ModelKind::Dog {
-                return bad(book.span(), "[book] is for model = \"dog\" only");
+        let sections = [
+            (
+                "book",
+                ModelKind::Dog,
+                self.book.as_ref().map(Spanned::span),
+            ),
+            (
+                "spring",
+                ModelKind::MassSpring,
+                self.spring.as_ref().map(Spanned::span),
+            ),
+            (
+                "xpbd",
+                ModelKind::Xpbd,
+                self.xpbd.as_ref().map(Spanned::span),
+            ),
+        ];
+        for (section, owner, span) in sections {
+            if let Some(span) = span.filter(|_| model != owner) {
+                return bad(
+                    span,
+                    &format!("[{section}] is for model = \"{}\" only", owner.name()),
+                );
             }
         }
         let at =
             |(span, message): (Range<usize>, String)| SceneError::at(text, Some(span), message);
+        crate::settings::check_spelling(self).map_err(at)?;
         match model {
             // The book as `folio run` and the C API build it, then its first grab.
             ModelKind::Dog => {
-                let checked = crate::book::check(self);
+                crate::book::check(self)?;
                 #[cfg(feature = "fixture-reach")]
-                let checked = checked.and_then(|()| crate::reach::check_reach(self));
-                checked.map_err(at)
+                crate::reach::check_reach(self).map_err(at)?;
+                Ok(())
             }
-            ModelKind::MassSpring => self.check_spring().map_err(at),
-            ModelKind::Xpbd => self.check_xpbd().map_err(at),
+            ModelKind::MassSpring => self.check_spring(),
+            #[cfg(feature = "xpbd")]
+            ModelKind::Xpbd => self.check_xpbd(),
+            #[cfg(not(feature = "xpbd"))]
+            ModelKind::Xpbd => bad(
+                self.model.span(),
+                "the xpbd model is not in this build (folio-scene without its `xpbd` feature)",
+            ),
             _ => Ok(()),
         }
     }
@@ -141,7 +182,6 @@ impl Scene {
         let (o, e) = (&self.output, &self.expect);
         let spans = [
             ("[sheet]", self.sheet.as_ref().map(Spanned::span)),
-            ("[tearing]", self.tearing.as_ref().map(Spanned::span)),
             ("sheet.notch", self.notch.as_ref().map(Spanned::span)),
             ("output.mesh", o.mesh.as_ref().map(Spanned::span)),
             ("output.textures", o.textures.as_ref().map(Spanned::span)),
@@ -170,9 +210,9 @@ impl Scene {
             return Ok(());
         };
         let mut seen: Vec<&str> = Vec::new();
+        let known = all_effects();
         for e in list.get_ref() {
             let name = e.get_ref().as_str();
-            let known = all_effects();
             let message = if !known.contains(&name) {
                 format!("unknown effect `{name}`; known: {}", known.join(", "))
             } else if !model.effects().contains(&name) {
@@ -197,214 +237,79 @@ impl Scene {
         Ok(())
     }
 
+    /// The scene's own rules on settings: its frames take whole numbers of steps, and a
+    /// sheet runs in `f64`.
     fn check_settings(&self, text: &str, model: ModelKind) -> Result<(), SceneError> {
         let bad =
             |span: Range<usize>, message: &str| Err(SceneError::at(text, Some(span), message));
-        if let Some(w) = &self.weights {
-            // The book holds them to their ranges (`crate::book`).
-            if model != ModelKind::Dog {
-                return bad(w.span(), "[weights] is for model = \"dog\" only");
-            }
-        }
-        let Some(section) = &self.solver else {
-            return Ok(());
-        };
-        if model == ModelKind::Cone {
-            return bad(
-                section.span(),
-                "[solver] is for the dog, mass-spring, xpbd and sheet models",
-            );
-        }
-        let s = section.get_ref();
-        if let Some(h) = &s.time_step {
-            // A frame takes a whole number of steps: the scene's own bound. The model holds
-            // the step to its range (its settings' `validate`).
-            if h.get_ref().is_finite() && !crate::clock::fits_in_frame(*h.get_ref()) {
-                return bad(
-                    h.span(),
-                    &format!(
-                        "solver.time_step must be at most one frame, 1/60 s (a frame takes \
-                         as many steps as keep the model on time), not {}",
-                        crate::number::show(*h.get_ref())
-                    ),
-                );
-            }
-        }
-        self.check_new_solver_keys(text, model, s)?;
-        // The book holds these to their ranges (`crate::book`).
-        let dog_only = [
-            (
-                "newton_iterations",
-                s.newton_iterations.as_ref().map(Spanned::span),
-            ),
-            (
-                "max_corrections",
-                s.max_corrections.as_ref().map(Spanned::span),
-            ),
-            (
-                "collision_rounds",
-                s.collision_rounds.as_ref().map(Spanned::span),
-            ),
-            (
-                "krylov_restart",
-                s.krylov_restart.as_ref().map(Spanned::span),
-            ),
-            (
-                "newton_tolerance",
-                s.newton_tolerance.as_ref().map(Spanned::span),
-            ),
-            (
-                "constraint_hessian",
-                s.constraint_hessian.as_ref().map(Spanned::span),
-            ),
-            ("projection", s.projection.as_ref().map(Spanned::span)),
-        ];
-        for (name, span) in dog_only {
-            if let Some(span) = span.filter(|_| model != ModelKind::Dog) {
-                return bad(span, &format!("solver.{name} is for model = \"dog\" only"));
-            }
-        }
-        if let Some(v) = &s.integrator {
-            if model != ModelKind::MassSpring {
-                return bad(
-                    v.span(),
-                    "solver.integrator is for model = \"mass-spring\" only",
-                );
-            }
-        }
-        // The page model holds them to its range (`refused_settings`).
-        if let Some(v) = &s.substeps {
-            if !matches!(model, ModelKind::MassSpring | ModelKind::Xpbd) {
-                return bad(
-                    v.span(),
-                    "solver.substeps is for model = \"mass-spring\" or \"xpbd\" only",
-                );
-            }
-        }
-        Ok(())
-    }
-
-    /// The keys of `[solver]` that set the page's resolution and precision and the DOG
-    /// solver's tolerance, Hessian and projection: each for the models it applies to, in
-    /// range, at its own key.
-    fn check_new_solver_keys(
-        &self,
-        text: &str,
-        model: ModelKind,
-        s: &SolverSection,
-    ) -> Result<(), SceneError> {
-        let bad =
-            |span: Range<usize>, message: &str| Err(SceneError::at(text, Some(span), message));
-        if let Some(g) = &s.grid {
-            match model {
-                ModelKind::Dog | ModelKind::MassSpring | ModelKind::Xpbd => {}
-                ModelKind::Sheet => {
-                    return bad(
-                        g.span(),
-                        "solver.grid is for the dog, mass-spring and xpbd models; a sheet \
-                         sets its quads with sheet.nx and sheet.ny",
-                    );
-                }
-                _ => {
-                    return bad(
-                        g.span(),
-                        "solver.grid is for the dog, mass-spring and xpbd models",
-                    );
-                }
-            }
-            if !g.get_ref().iter().all(|q| GRID_RANGE.contains(q)) {
-                let (lo, hi) = (GRID_RANGE.start(), GRID_RANGE.end());
-                return bad(
-                    g.span(),
-                    &format!(
-                        "solver.grid = [across, along] quads, each between {lo} and {hi}, \
-                         not {:?}",
-                        g.get_ref()
-                    ),
-                );
-            }
-        }
-        if let Some(p) = &s.precision {
-            if model == ModelKind::Sheet && *p.get_ref() == Precision::F32 {
+        if let Some(p) = &self.precision {
+            let f32_models = [ModelKind::Dog, ModelKind::MassSpring, ModelKind::Xpbd];
+            if *p.get_ref() == Precision::F32 && !f32_models.contains(&model) {
                 return bad(
                     p.span(),
-                    "solver.precision = \"f32\" is for the dog, mass-spring and xpbd models; \
-                     a sheet scene runs in f64",
+                    "precision = \"f32\" is for the dog, mass-spring and xpbd models; a sheet \
+                     scene runs in f64",
                 );
             }
         }
-        if let (Some(p), Some(m)) = (&s.projection, &s.max_corrections) {
-            let (on, corrections) = (*p.get_ref(), *m.get_ref());
-            if on != (corrections > 0) {
-                let message = if on {
-                    "solver.projection = true needs solver.max_corrections of at least 1 \
-                     (max_corrections = 0 switches the projection off)"
-                } else {
-                    "solver.projection = false switches the projection off: leave out \
-                     solver.max_corrections (or set it to 0)"
-                };
-                return bad(p.span(), message);
-            }
+        let seed = self.seed_fixture();
+        let (key, h) = match model {
+            ModelKind::Dog => (
+                "book.solver.time_step",
+                crate::settings::book_settings::<f64>(self)?
+                    .solver
+                    .time_step,
+            ),
+            ModelKind::MassSpring => (
+                "spring.time_step",
+                crate::settings::spring_settings::<f64>(self, seed)?.time_step,
+            ),
+            #[cfg(feature = "xpbd")]
+            ModelKind::Xpbd => (
+                "xpbd.time_step",
+                crate::settings::xpbd_settings::<f64>(self, seed)?.time_step,
+            ),
+            #[cfg(feature = "sheet")]
+            ModelKind::Sheet => (
+                "sheet.time_step",
+                crate::settings::sheet_settings(self)?.time_step,
+            ),
+            _ => return Ok(()),
+        };
+        // A frame takes a whole number of steps: the scene's own bound. The model holds the
+        // step to its range (its settings' `validate`).
+        match self.keys.span(key) {
+            Some(span) if h.is_finite() && !crate::clock::fits_in_frame(h) => bad(
+                span,
+                &format!(
+                    "`{key}` must be at most one frame, 1/60 s (a frame takes as many steps as \
+                     keep the model on time), not {}",
+                    crate::number::show(h)
+                ),
+            ),
+            _ => Ok(()),
         }
-        Ok(())
     }
 
     /// The mass-spring page's settings as `folio run` builds them, checked by the page's
-    /// own `validate()` (reported at `[solver]`, the only keys a scene sets).
-    fn check_spring(&self) -> Result<(), (Range<usize>, String)> {
-        let checked = crate::settings::spring_settings::<f64>(self, self.seed_fixture()).validate();
-        self.refused_settings("mass-spring", checked)
+    /// own `validate()` at the `[spring]` key that set the refused field.
+    fn check_spring(&self) -> Result<(), SceneError> {
+        let s = crate::settings::spring_settings::<f64>(self, self.seed_fixture())?;
+        s.validate().map_err(|e| self.refused("spring", &e))
     }
 
     /// The XPBD page's settings as `folio run` builds them, checked by the page's own
-    /// `validate()` (reported at `[solver]`, the only keys a scene sets).
-    fn check_xpbd(&self) -> Result<(), (Range<usize>, String)> {
-        let checked = crate::settings::xpbd_settings::<f64>(self, self.seed_fixture()).validate();
-        self.refused_settings("xpbd", checked)
+    /// `validate()` at the `[xpbd]` key that set the refused field.
+    #[cfg(feature = "xpbd")]
+    fn check_xpbd(&self) -> Result<(), SceneError> {
+        let s = crate::settings::xpbd_settings::<f64>(self, self.seed_fixture())?;
+        s.validate().map_err(|e| self.refused("xpbd", &e))
     }
 
-    /// A page model's refusal of its settings, at the `[solver]` key that set the field
-    /// (`grid` sets the page's particles or quads), else at `[solver]` (or the input) for a
-    /// field the scene does not set.
-    fn refused_settings(
-        &self,
-        model: &str,
-        checked: Result<(), SettingError>,
-    ) -> Result<(), (Range<usize>, String)> {
-        const SCENE_KEYS: [(&str, &str); 7] = [
-            ("particles_across", "solver.grid"),
-            ("particles_along", "solver.grid"),
-            ("quads_across", "solver.grid"),
-            ("quads_along", "solver.grid"),
-            ("time_step", "solver.time_step"),
-            ("substeps", "solver.substeps"),
-            ("integrator", "solver.integrator"),
-        ];
-        checked.map_err(|e| {
-            let not = e
-                .value
-                .map(|v| format!(", not {}", Shown(v)))
-                .unwrap_or_default();
-            let key = SCENE_KEYS
-                .iter()
-                .find(|(field, _)| e.path.is(field))
-                .map(|(_, key)| *key);
-            if let Some(at) = key.and_then(|k| self.keys.span(k)) {
-                let key = key.unwrap_or_default();
-                return (
-                    at,
-                    format!(
-                        "{key}: the {model} page's {} must be {}{not}",
-                        e.path, e.requirement
-                    ),
-                );
-            }
-            let span = self
-                .solver
-                .as_ref()
-                .map_or(self.input.span(), Spanned::span);
-            (span, format!("the {model} page refuses its settings: {e}"))
-        })
+    /// A model's refusal `e` of its `section`, at the key that set the field.
+    fn refused(&self, section: &str, e: &SettingError) -> SceneError {
+        let (span, message) = crate::settings::refusal(self, section, e);
+        self.error(span, message)
     }
 
     fn check_input(&self, text: &str, model: ModelKind) -> Result<(), SceneError> {

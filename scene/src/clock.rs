@@ -4,7 +4,7 @@
 //! taken $\mathrm{round}((f + 1)\thinspace \Delta t_{\mathrm{frame}} / h)$ steps in all
 //! ([`steps_after`]), so at $h = 1/120$ s every frame takes two steps. A model without a
 //! step (the cone) takes one per frame. A scene's $h$ is at most one frame (the scene
-//! check refuses a longer `solver.time_step`).
+//! check refuses a longer time step, `book.solver.time_step` or the page model's `time_step`).
 
 /// Simulated seconds per frame: 1/60 s, the rate of `frames`, of timed events
 /// (`input.events`' `frame` and `time`) and of the hands of a sheet scene.

@@ -8,7 +8,7 @@
 //! d_s(t))$ (later segments on the left), with $d_s(t)$ the time of segment $s$ elapsed by
 //! $t$; finger $k$ is at $c_0 + \Delta c(t) + R(t)(p_k - c_0)$: the spin turns the fingers
 //! about the moving centre. Times are simulated seconds: frame $f$ (1/60 s,
-//! [`crate::clock::FRAME_SECONDS`] $= \Delta t$, whatever the sheet's `solver.time_step`)
+//! [`crate::clock::FRAME_SECONDS`] $= \Delta t$, whatever the sheet's `sheet.time_step`)
 //! ends at $t = (f + 1)\thinspace\Delta t$, and the fingers are placed at that time before
 //! the frame's steps. A release at time $r$ lets go before frame
 //! $\mathrm{round}(r / \Delta t)$.

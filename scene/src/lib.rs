@@ -5,14 +5,19 @@
 //! deserializer ([`reader`]), the timed events and hands that drive a run ([`events`],
 //! [`hands`]), the recorded fixtures and built-in scenes they name ([`fixtures`],
 //! [`builtin`]), the frame clock (a frame is 1/60 s; [`clock`]), the model settings a scene
-//! describes ([`settings`]), the book of a DOG scene held to the book's own validation at
-//! the keys that set it ([`book`]), the tearing sheet of a sheet scene ([`sheet`]), a scene
-//! name's rules ([`name`]) and short numbers in messages ([`number`]). The ranges of the
-//! models' settings are the models' own (each settings type's `validate`).
+//! describes, read straight into the models' settings types: the keys are their field
+//! names ([`settings`]), the older spellings read for one release ([`legacy`]), the book
+//! of a DOG scene held to the book's own validation at the keys that set it ([`book`]), the
+//! tearing sheet of a sheet scene ([`sheet`]), a scene name's rules ([`name`]) and short
+//! numbers in messages ([`number`]). The ranges of the models' settings are the models' own
+//! (each settings type's `validate`).
 //!
-//! Features (both default): `sheet` (the tearing sheet's scenes, [`sheet`] and [`hands`])
-//! and `fixture-reach` (the check that a book fixture's first grab reaches the book,
-//! [`reach`]); the browser build (`folio-web`) leaves both out, for size.
+//! Features (all default): `sheet` (the tearing sheet's scenes, [`sheet`] and [`hands`]),
+//! `xpbd` (the XPBD page's scenes), `older-keys` (the older spellings of the keys) and
+//! `fixture-reach` (the check that a book fixture's first grab reaches the book,
+//! [`reach`]); the browser build (`folio-web`) leaves them all out, for size (issue 23's
+//! bound): it refuses a sheet or XPBD scene at its `model`, and a file in the older keys
+//! at the first older table.
 //!
 //! Layers: the models (`folio-book`, `folio-pages`, `folio-tearing`) below; the `folio`
 //! command and the C API (`folio-capi`) above, both reading scenes through this crate.
@@ -28,6 +33,7 @@ pub mod fixtures;
 #[cfg(feature = "sheet")]
 pub mod hands;
 pub mod keys;
+pub mod legacy;
 pub mod name;
 pub mod number;
 #[cfg(feature = "fixture-reach")]

@@ -19,20 +19,20 @@ use crate::settings::book_settings;
 /// the blocks alone; a one- or two-page book settles longer at creation).
 ///
 /// # Errors
-/// The span of the input (or of `book.left_pages`) and why the grab cannot touch.
+/// The span of the input (or of `book.params.left_pages`) and why the grab cannot touch.
 pub fn check_reach(scene: &Scene) -> Result<(), Problem> {
     let input = scene.input.get_ref();
-    let settings = book_settings::<f64>(scene);
+    let settings = book_settings::<f64>(scene).map_err(|e| (scene.input.span(), e.message))?;
     let p = settings.params;
     if let Some(events) = &input.events {
         if p.left_pages >= p.total_pages {
             let at = scene
                 .keys
-                .span("book.left_pages")
+                .span("book.params.left_pages")
                 .unwrap_or_else(|| events.span());
             return Err((
                 at,
-                "the first grab takes the right block's top page, but book.left_pages leaves \
+                "the first grab takes the right block's top page, but book.params.left_pages leaves \
                  that block empty"
                     .into(),
             ));

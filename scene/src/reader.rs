@@ -558,31 +558,60 @@ mod tests {
         assert!(probe("a = nan\n").expect("reads").a.get_ref().is_nan());
     }
 
-    /// The scene as `toml`'s own deserializer reads it: the independent reference.
-    /// The scene and its notch (read apart, as `Scene::parse` does), or the first error.
-    type Read = Result<(crate::scene::Scene, Option<Notch>), (String, Option<Range<usize>>)>;
+    /// The scene, its notch and its model's settings (read apart, as `Scene::parse` and
+    /// `crate::settings` do), or the first error.
+    type Read =
+        Result<(crate::scene::Scene, Option<Notch>, Sections), (String, Option<Range<usize>>)>;
     type Notch = Spanned<Vec<Spanned<[f64; 2]>>>;
+    type Sections = (
+        Option<folio_book::BookSettings<f64>>,
+        Option<folio_tearing::sheet::SheetSettings<f64>>,
+    );
+
+    /// The document of `text` with its notch and its `[book]` and `[sheet]` taken out.
+    fn parts(text: &str) -> [Option<Spanned<DeValue<'_>>>; 4] {
+        let mut doc = DeTable::parse(text).expect("TOML");
+        let notch = crate::keys::take(&mut doc, "sheet", "notch");
+        let book = doc.get_ref().get("book").cloned();
+        let sheet = doc.get_ref().get("sheet").cloned();
+        let span = doc.span();
+        [
+            Some(Spanned::new(span, DeValue::Table(doc.into_inner()))),
+            notch,
+            book,
+            sheet,
+        ]
+    }
 
     /// The scene as `toml`'s own deserializer reads it: the independent reference.
     fn by_toml(text: &str) -> Read {
-        let mut doc = DeTable::parse(text).expect("TOML");
-        let notch = crate::keys::take(&mut doc, "sheet", "notch");
+        let [doc, notch, book, sheet] = parts(text);
         let error = |e: toml::de::Error| (e.message().to_string(), e.span());
-        let scene = crate::scene::Scene::deserialize(IntoDeserializer::into_deserializer(doc))
-            .map_err(error)?;
-        let notch = notch
-            .map(|v| Notch::deserialize(IntoDeserializer::into_deserializer(v)))
-            .transpose()
-            .map_err(error)?;
-        Ok((scene, notch))
+        fn typed<'de, T: de::Deserialize<'de>>(
+            v: Option<Spanned<DeValue<'de>>>,
+        ) -> Result<Option<T>, toml::de::Error> {
+            v.map(|v| T::deserialize(IntoDeserializer::into_deserializer(v)))
+                .transpose()
+        }
+        let scene = typed(doc).map_err(error)?.expect("a document");
+        let notch = typed(notch).map_err(error)?;
+        let sections = (typed(book).map_err(error)?, typed(sheet).map_err(error)?);
+        Ok((scene, notch, sections))
     }
 
     fn by_reader(text: &str) -> Read {
-        let mut doc = DeTable::parse(text).expect("TOML");
-        let notch = crate::keys::take(&mut doc, "sheet", "notch");
+        let [doc, notch, book, sheet] = parts(text);
         let error = |e: ReadError| (e.message, e.span);
-        let scene = read_table(doc).map_err(error)?;
-        Ok((scene, notch.map(read).transpose().map_err(error)?))
+        let typed = |v: Option<Spanned<DeValue<'_>>>| v.map(read).transpose();
+        let scene = doc
+            .map(read)
+            .transpose()
+            .map_err(error)?
+            .expect("a document");
+        let notch = typed(notch).map_err(error)?;
+        let book = book.map(read).transpose().map_err(error)?;
+        let sheet = sheet.map(read).transpose().map_err(error)?;
+        Ok((scene, notch, (book, sheet)))
     }
 
     /// Every built-in scene reads to the same value as with `toml`'s deserializer.
@@ -608,18 +637,18 @@ mod tests {
             "effects = \"gravity\"\n",
             "effects = [1, 2]\n",
             "effects = [[\"gravity\"]]\n",
-            "[solver]\ntime_step = \"x\"\n",
-            "[solver]\ntime_step = [1]\n",
-            "[solver]\ngrid = [1]\n",
-            "[solver]\ngrid = [1, -2]\n",
-            "[solver]\ngrid = { a = 1 }\n",
-            "[solver]\nprecision = \"f16\"\n",
-            "[solver]\nconstraint_hessian = 1\n",
-            "[solver]\nnewton_iterations = 4294967296\n",
-            "[solver]\nextra = 1\n",
-            "[book]\npage_width = true\n",
-            "[book]\nwidth = 1\n",
-            "[weights]\nbending = \"soft\"\n",
+            "[book.solver]\ntime_step = \"x\"\n",
+            "[book.solver]\ntime_step = [1]\n",
+            "[book]\nquads_across = [1]\n",
+            "[book]\nquads_across = -2\n",
+            "[book]\nquads_along = { a = 1 }\n",
+            "precision = \"f16\"\n",
+            "[book.solver]\nconstraint_hessian = 1\n",
+            "[book.solver]\nnewton_iterations = 4294967296\n",
+            "[book.solver]\nextra = 1\n",
+            "[book.params]\npage_width = true\n",
+            "[book.params]\nwidth = 1\n",
+            "[book.weights]\nbending = \"soft\"\n",
             "[expect]\nfinal_pages = [1, 2]\n",
             "[expect]\ntear_start = \"elsewhere\"\n",
             "[output]\nreport = \"yes\"\n",
@@ -630,9 +659,9 @@ mod tests {
             "[[input.hands]]\nfingers = [[1.0, 2.0]]\nmoves = [{ start = \"now\" }]\n",
             "[sheet]\nnx = -3\n",
             "[sheet]\nmembrane = 3\n",
-            "[tearing]\nestimator = \"guess\"\n",
-            "[tearing.fibers]\nscale = \"x\"\n",
-            "[tearing.nope]\na = 1\n",
+            "[sheet.tearing]\nestimator = \"guess\"\n",
+            "[sheet.tearing.fibers]\nscale = \"x\"\n",
+            "[sheet.tearing.nope]\na = 1\n",
         ];
         let mut checked = 0;
         for case in cases {
@@ -648,7 +677,7 @@ mod tests {
         assert_eq!(checked, cases.len());
         // An enum given no string: `toml` says "wanted string or table", the reader what it
         // got and what the key takes, at the same place.
-        let text = format!("{base}[solver]\nprecision = 64\n");
+        let text = format!("{base}precision = 64\n");
         let reference = by_toml(&text).map(|_| ()).expect_err("enum");
         let ours = by_reader(&text).map(|_| ()).expect_err("enum");
         assert_eq!(ours.1, reference.1);

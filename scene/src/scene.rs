@@ -4,10 +4,8 @@
 
 use core::ops::Range;
 
-use folio_book::{BookParams, Weights};
-use folio_tearing::TearSettings;
-use folio_tearing::sheet::SheetSettings;
 use serde::Deserialize;
+use serde::de::IgnoredAny;
 use toml::Spanned;
 
 use crate::keys::KeySpans;
@@ -28,27 +26,27 @@ pub struct Scene {
     /// The effects to simulate (default: every effect the model has; see
     /// [`ModelKind::effects`]). An effect left out contributes no term and no work.
     pub effects: Option<Spanned<Vec<Spanned<String>>>>,
-    /// The book around a DOG page (`model = "dog"` only): the keys of [`BookParams`]
-    /// (omitted keys keep its defaults; without `left_pages`, half the pages start on the
-    /// left), except `cover`, which is the `cover` effect.
-    pub book: Option<Spanned<BookParams>>,
+    /// The precision the model runs in (`"f64"`, the default, or `"f32"`; dog, mass-spring
+    /// and xpbd).
+    pub precision: Option<Spanned<Precision>>,
+    /// The DOG book (`model = "dog"` only): the keys of `folio_book::BookSettings`, read by
+    /// [`crate::settings::book_settings`] in the run's precision.
+    pub book: Option<Spanned<IgnoredAny>>,
+    /// The mass-spring page (`model = "mass-spring"` only): the keys of
+    /// `folio_pages::spring::SpringSettings` ([`crate::settings::spring_settings`]).
+    pub spring: Option<Spanned<IgnoredAny>>,
+    /// The XPBD page (`model = "xpbd"` only): the keys of `folio_pages::xpbd::XpbdSettings`
+    /// ([`crate::settings::xpbd_settings`]).
+    pub xpbd: Option<Spanned<IgnoredAny>>,
     /// The sheet of a tearing scene (`model = "sheet"` only): the keys of
-    /// [`SheetSettings`] (omitted keys keep its defaults), except `tearing` (the scene's
-    /// `[tearing]`), `time_step` (`solver.time_step`) and `effects` (the scene's list).
-    pub sheet: Option<Spanned<SheetSettings<f64>>>,
+    /// `folio_tearing::sheet::SheetSettings` with `[sheet.tearing]`
+    /// ([`crate::settings::sheet_settings`]), and `notch`.
+    pub sheet: Option<Spanned<IgnoredAny>>,
     /// A slit cut into the sheet before the run, written `sheet.notch`: a polyline of grid
     /// vertices from a point on the border, each segment along a grid line or a quad's
     /// diagonal (`model = "sheet"` only).
     #[serde(skip)]
     pub notch: Option<Spanned<Vec<Spanned<[f64; 2]>>>>,
-    /// The tearing step's parameters (`model = "sheet"` only): the keys of
-    /// [`TearSettings`], with `[tearing.fibers]` and `[tearing.detail]`.
-    pub tearing: Option<Spanned<TearSettings>>,
-    /// Potential weights of the DOG book (`model = "dog"` only): the keys of [`Weights`],
-    /// each in $[0, 10^9]$.
-    pub weights: Option<Spanned<Weights<f64>>>,
-    /// Time step and solver settings.
-    pub solver: Option<Spanned<SolverSection>>,
     /// The input: a recorded fixture or timed events.
     pub input: Spanned<InputSection>,
     /// What `folio run` writes.
@@ -62,6 +60,33 @@ pub struct Scene {
     /// Where each key of the file sits (errors of a model's `validate()` point there).
     #[serde(skip)]
     pub keys: KeySpans,
+    /// The older keys the file uses ([`crate::legacy`]): each read, at its new key.
+    #[serde(skip)]
+    pub notices: Vec<SceneNotice>,
+    /// The file's text: the model's settings are read from it in the run's precision.
+    #[serde(skip)]
+    pub source: String,
+}
+
+/// An older key a scene file uses: read at its new key, for one release.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SceneNotice {
+    /// 1-based line.
+    pub line: usize,
+    /// 1-based column.
+    pub column: usize,
+    /// Which key it is now.
+    pub message: String,
+}
+
+impl core::fmt::Display for SceneNotice {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "line {}, column {}: {}",
+            self.line, self.column, self.message
+        )
+    }
 }
 
 /// A scene's stated expectations, checked against the run's summary. The per-frame bounds
@@ -161,6 +186,20 @@ impl ModelKind {
         }
     }
 
+    /// The scene table that holds the model's settings type (`"book"` for
+    /// `folio_book::BookSettings`, `"spring"`, `"xpbd"`, `"sheet"`); `None` for the cone,
+    /// which takes none.
+    #[must_use]
+    pub fn section(self) -> Option<&'static str> {
+        match self {
+            Self::Dog => Some("book"),
+            Self::MassSpring => Some("spring"),
+            Self::Xpbd => Some("xpbd"),
+            Self::Sheet => Some("sheet"),
+            Self::Cone => None,
+        }
+    }
+
     /// Every model, in the order scene docs list them.
     pub const ALL: [Self; 5] = [
         Self::Dog,
@@ -182,44 +221,7 @@ impl ModelKind {
     }
 }
 
-/// Time step and solver settings; omitted keys keep the model's defaults.
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SolverSection {
-    /// Time step (seconds; DOG, mass-spring, xpbd and sheet).
-    pub time_step: Option<Spanned<f64>>,
-    /// Newton iterations per step (DOG; the seed's one).
-    pub newton_iterations: Option<Spanned<u32>>,
-    /// Constraint projection iterations after a step (DOG; 0 is the seed's plain step).
-    pub max_corrections: Option<Spanned<u32>>,
-    /// Substeps per step (mass-spring, 1 to 64; xpbd, 1 to 1024).
-    pub substeps: Option<Spanned<u32>>,
-    /// Quads of the page `[across, along]` (across from the spine, along it), each
-    /// [`GRID_RANGE`] (dog, mass-spring: particles are quads + 1, xpbd).
-    pub grid: Option<Spanned<[u32; 2]>>,
-    /// The precision the model runs in (dog, mass-spring, xpbd; default `"f64"`).
-    pub precision: Option<Spanned<Precision>>,
-    /// The eq. 3 residual at which Newton stops iterating (dog; finite, >= 0).
-    pub newton_tolerance: Option<Spanned<f64>>,
-    /// Include the constraint Hessian in the KKT matrix (dog; default false, the seed's).
-    pub constraint_hessian: Option<Spanned<bool>>,
-    /// Restart length of the KKT refinement's GMRES in `f32` (dog, 1 to 50; default 10): its
-    /// basis holds one more vector of the KKT order than this.
-    pub krylov_restart: Option<Spanned<u32>>,
-    /// Collision detect/resolve rounds per step (dog, 1 to 16; default 3, the seed's).
-    pub collision_rounds: Option<Spanned<u32>>,
-    /// The constraint projection after a step (dog; default true; `false` is
-    /// `max_corrections = 0`).
-    pub projection: Option<Spanned<bool>>,
-    /// The mass-spring page's integrator: `"semi-implicit-euler"` (the seed's, default) or
-    /// `"implicit-euler"` (mass-spring only).
-    pub integrator: Option<Spanned<folio_pages::spring::Integrator>>,
-}
-
-/// The quads a page may have across and along (`solver.grid`), each.
-pub const GRID_RANGE: core::ops::RangeInclusive<u32> = 2..=64;
-
-/// The precision a model runs in (`solver.precision`).
+/// The precision a model runs in (`precision`).
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum Precision {
@@ -440,24 +442,18 @@ pub fn line_column(text: &str, offset: usize) -> (usize, usize) {
 }
 
 impl Scene {
-    /// The precision the scene's model runs in (`solver.precision`, default `f64`).
+    /// The precision the scene's model runs in (`precision`, default `f64`).
     #[must_use]
     pub fn precision(&self) -> Precision {
-        self.solver
+        self.precision
             .as_ref()
-            .and_then(|s| s.get_ref().precision.as_ref())
             .map_or(Precision::F64, |p| *p.get_ref())
     }
 
-    /// The page size `[width, height]` (page units): every model's page is
-    /// $W \times W\sqrt 2$, $W$ = `book.page_width` (default 12).
+    /// A [`SceneError`] at byte range `span` of the scene's file.
     #[must_use]
-    pub fn page_size(&self) -> [f64; 2] {
-        let w = self
-            .book
-            .as_ref()
-            .map_or(BookParams::default().page_width, |b| b.get_ref().page_width);
-        [w, w * core::f64::consts::SQRT_2]
+    pub fn error(&self, span: Range<usize>, message: impl Into<String>) -> SceneError {
+        SceneError::at(&self.source, Some(span), message)
     }
 
     /// The effects the run simulates: the scene's list, else every effect of the model.

@@ -6,7 +6,6 @@
 use core::ops::Range;
 
 use folio_geometry::SheetMesh;
-use folio_kernels::{SettingError, Shown};
 use folio_tearing::sheet::{SheetSettings, TearingSheet};
 use toml::Spanned;
 
@@ -17,11 +16,12 @@ use crate::settings::sheet_settings;
 
 type Problem = (Range<usize>, String);
 
-/// The sheet's pattern size `[W, H]` (sheet units).
-#[must_use]
-pub fn size(scene: &Scene) -> [f64; 2] {
-    let s = sheet_settings(scene);
-    [s.width, s.height]
+/// The sheet's settings, or where they do not read.
+fn read(scene: &Scene) -> Result<SheetSettings<f64>, Problem> {
+    sheet_settings(scene).map_err(|e| {
+        let span = scene.sheet.as_ref().map_or(0..0, Spanned::span);
+        (span, e.message)
+    })
 }
 
 /// The hands of a sheet scene.
@@ -51,7 +51,6 @@ pub fn frames(scene: &Scene) -> Result<u32, Problem> {
 /// # Errors
 /// As [`setup`] and [`frames`].
 pub fn check(scene: &Scene) -> Result<(), Problem> {
-    check_spelling(scene)?;
     setup(scene)?;
     frames(scene).map(|_| ())
 }
@@ -62,10 +61,10 @@ pub fn check(scene: &Scene) -> Result<(), Problem> {
 /// # Errors
 /// The span of the setting, notch point, hand or finger the sheet refuses, and why.
 pub fn setup(scene: &Scene) -> Result<(TearingSheet<f64>, Hands), Problem> {
-    let settings = sheet_settings(scene);
+    let settings = read(scene)?;
     settings
         .validate()
-        .map_err(|e| settings_problem(scene, &e))?;
+        .map_err(|e| crate::settings::refusal(scene, "sheet", &e))?;
     let specs = hand_specs(scene)?;
     hands::check(specs, [settings.width, settings.height])?;
     let mut mesh = SheetMesh::rectangle(settings.width, settings.height, settings.nx, settings.ny)
@@ -82,49 +81,6 @@ pub fn setup(scene: &Scene) -> Result<(TearingSheet<f64>, Hands), Problem> {
 /// The span of `[sheet]`, else of the whole file's start.
 fn whole_sheet(scene: &Scene) -> Range<usize> {
     scene.sheet.as_ref().map_or(0..0, Spanned::span)
-}
-
-/// The keys of [`SheetSettings`] that a scene spells elsewhere, and where.
-const SPELLED_ELSEWHERE: [(&str, &str); 3] = [
-    ("sheet.tearing", "[tearing]"),
-    ("sheet.time_step", "solver.time_step"),
-    ("sheet.effects", "the scene's `effects` list"),
-];
-
-/// Refuses a key of [`SheetSettings`] that a scene writes in another place
-/// ([`SPELLED_ELSEWHERE`]), so that each setting has one spelling in a scene.
-fn check_spelling(scene: &Scene) -> Result<(), Problem> {
-    for (key, instead) in SPELLED_ELSEWHERE {
-        if let Some(span) = scene.keys.span(key) {
-            return Err((span, format!("{key}: a scene writes it as {instead}")));
-        }
-    }
-    Ok(())
-}
-
-/// The scene key of a field that [`SheetSettings::validate`] names by its path from
-/// [`SheetSettings`]: `[tearing]` is its field `tearing`, the time step is `[solver]`'s,
-/// every other field is `[sheet]`'s.
-fn scene_key(path: &str) -> String {
-    if path == "time_step" {
-        "solver.time_step".into()
-    } else if path.starts_with("tearing.") {
-        path.to_string()
-    } else {
-        format!("sheet.{path}")
-    }
-}
-
-/// What a refused setting is, at the scene key that set it (else at `[sheet]`).
-fn settings_problem(scene: &Scene, e: &SettingError) -> Problem {
-    let key = scene_key(&e.path.to_string());
-    let not = e
-        .value
-        .map(|v| format!(", not {}", Shown(v)))
-        .unwrap_or_default();
-    let message = format!("{key} must be {}{not}", e.requirement);
-    let span = scene.keys.span(&key).unwrap_or_else(|| whole_sheet(scene));
-    (span, message)
 }
 
 /// Cuts the notch polyline `notch` into the rectangle `mesh` of `settings` (its points
@@ -215,12 +171,14 @@ mod tests {
     #[test]
     fn the_settings_types_are_the_scene_keys() {
         let text = format!(
-            "{SHEET}[sheet]\nnx = 4\nnotch = [[6.0, 0.0], [6.0, 1.5]]\n\
-             [sheet.cones]\nflip_margin = 0.25\n[tearing]\nsnap = 0.2\n\
-             [tearing.fibers]\nseed = 7\n[tearing.detail]\nsigma = 0.3\n"
+            "{SHEET}[sheet]\nnx = 4\nnotch = [[6.0, 0.0], [6.0, 1.5]]\ntime_step = 0.01\n\
+             [sheet.cones]\nflip_margin = 0.25\n[sheet.tearing]\nsnap = 0.2\n\
+             [sheet.tearing.fibers]\nseed = 7\n[sheet.tearing.detail]\nsigma = 0.3\n"
         );
         let scene = Scene::parse(&text).unwrap();
-        let s = crate::settings::sheet_settings(&scene);
+        assert!(scene.notices.is_empty(), "{:?}", scene.notices);
+        let s = crate::settings::sheet_settings(&scene).unwrap();
+        assert_eq!(s.time_step, 0.01);
         let defaults = folio_tearing::sheet::SheetSettings::<f64>::default();
         assert_eq!((s.nx, s.ny), (4, defaults.ny));
         assert_eq!(s.cones.flip_margin, 0.25);
@@ -232,35 +190,50 @@ mod tests {
     }
 
     #[test]
+    fn the_older_tearing_table_reads_at_its_new_key() {
+        let text = format!("{SHEET}[tearing]\nsnap = 0.2\n[solver]\ntime_step = 0.01\n");
+        let scene = Scene::parse(&text).unwrap();
+        let s = crate::settings::sheet_settings(&scene).unwrap();
+        assert_eq!((s.tearing.snap, s.time_step), (0.2, 0.01));
+        let said: Vec<&str> = scene.notices.iter().map(|n| n.message.as_str()).collect();
+        assert_eq!(said.len(), 2, "{said:?}");
+        assert!(said[0].contains("`sheet.tearing`"), "{said:?}");
+        assert!(said[1].contains("`sheet.time_step`"), "{said:?}");
+    }
+
+    #[test]
     fn a_refused_setting_is_reported_at_its_key() {
         let (line, column, message) = refused("[sheet.cones]\nflip_margin = 2.0\n");
         assert_eq!((line, column), (7, 15), "{message}");
         assert!(
-            message.contains("sheet.cones.flip_margin must be in [0, 1]"),
+            message.contains("`sheet.cones.flip_margin` must be in [0, 1]"),
             "{message}"
         );
-        let (line, column, message) = refused("[tearing.detail]\nweight = 1.5\n");
+        let (line, column, message) = refused("[sheet.tearing.detail]\nweight = 1.5\n");
         assert_eq!((line, column), (7, 10), "{message}");
-        assert_eq!(message, "tearing.detail.weight must be in [0, 1], not 1.5");
+        assert_eq!(
+            message,
+            "`sheet.tearing.detail.weight` must be in [0, 1], not 1.5"
+        );
         let (line, column, message) = refused("[sheet]\nheight = -1.0\n");
         assert_eq!((line, column), (7, 10), "{message}");
-        assert_eq!(message, "sheet.height must be finite and > 0, not -1");
+        assert_eq!(message, "`sheet.height` must be finite and > 0, not -1");
     }
 
     #[test]
     fn unknown_and_misplaced_keys_are_refused_at_their_place() {
-        let (line, column, message) = refused("[tearing.fibers]\ncolour = 1\n");
+        let (line, column, message) = refused("[sheet.tearing.fibers]\ncolour = 1\n");
         assert_eq!((line, column), (7, 1), "{message}");
         assert!(message.contains("unknown field `colour`"), "{message}");
-        for (extra, place) in [
-            ("[sheet]\ntime_step = 0.01\n", "solver.time_step"),
-            ("[sheet.tearing]\nsnap = 0.1\n", "[tearing]"),
-            ("[sheet.effects]\ngravity = true\n", "`effects` list"),
-        ] {
-            let (line, _, message) = refused(extra);
-            // The section starts on line 6: its header, or its first key on line 7.
-            assert!((6..=7).contains(&line), "{extra}: line {line}: {message}");
-            assert!(message.contains(place), "{extra}: {message}");
-        }
+        let (line, _, message) = refused("[sheet.tearing]\nsnap = 0.1\n[tearing]\nsnap = 0.2\n");
+        assert_eq!(line, 8, "{message}");
+        assert!(
+            message.contains("older spelling and its new one"),
+            "{message}"
+        );
+        // A table is placed at its header.
+        let (line, _, message) = refused("[sheet.effects]\ngravity = true\n");
+        assert_eq!(line, 6, "{message}");
+        assert!(message.contains("`effects` list"), "{message}");
     }
 }

@@ -1,6 +1,7 @@
-//! The `[solver]` keys of issue 21 (resolution, precision, Newton tolerance, constraint
-//! Hessian, collision rounds, projection) and the frame-time limit on `time_step`: each
-//! reaches the settings every caller builds, and each refusal sits at its key.
+//! The older `[solver]` keys (issue 21's resolution, precision, Newton tolerance, constraint
+//! Hessian, collision rounds, projection; [`crate::legacy`]) and the frame-time limit on
+//! the time step: each still reaches the settings every caller builds at its new key, and
+//! each refusal sits at the key the file wrote, in the new key's name.
 
 use folio_book::BookSettings;
 
@@ -37,7 +38,7 @@ fn every_dog_key_reaches_the_book_settings() {
     let (text, _) = with_solver("page-turn", keys);
     let scene = Scene::parse(&text).expect("checks");
     assert_eq!(scene.precision(), Precision::F32);
-    let s = book_settings::<f32>(&scene);
+    let s = book_settings::<f32>(&scene).expect("reads");
     let defaults = BookSettings::<f32>::default();
     assert_eq!((s.quads_across, s.quads_along), (10, 14));
     assert_eq!(s.solver.newton_iterations, 3);
@@ -45,12 +46,15 @@ fn every_dog_key_reaches_the_book_settings() {
     assert!(s.solver.constraint_hessian && !defaults.solver.constraint_hessian);
     assert_eq!(s.collision_rounds, 5);
     assert_eq!(s.solver.krylov_restart, 4);
-    assert_eq!((s.max_corrections, defaults.max_corrections), (0, 3));
+    assert_eq!(
+        (s.projection_iterations, defaults.projection_iterations),
+        (0, 3)
+    );
     // At one step per frame the step counts are the book's own.
     assert_eq!(s.merge_frames, defaults.merge_frames);
     let kept = with_solver("page-turn", "projection = true\nmax_corrections = 7").0;
-    let s = book_settings::<f64>(&Scene::parse(&kept).expect("checks"));
-    assert_eq!(s.max_corrections, 7);
+    let s = book_settings::<f64>(&Scene::parse(&kept).expect("checks")).expect("reads");
+    assert_eq!(s.projection_iterations, 7);
 }
 
 /// More than one Newton iteration refines the linear solves to eps^(3/4); one keeps the
@@ -60,6 +64,7 @@ fn newton_iterations_bring_the_refinement_they_need() {
     let tolerance = |line: &str| {
         let (text, _) = with_solver("page-turn", line);
         book_settings::<f64>(&Scene::parse(&text).expect("checks"))
+            .expect("reads")
             .solver
             .refinement_tolerance
     };
@@ -77,7 +82,7 @@ fn newton_iterations_bring_the_refinement_they_need() {
 #[test]
 fn step_counts_of_the_book_keep_their_time() {
     let (text, _) = with_solver("page-turn", "time_step = 0.004166666666666667");
-    let s = book_settings::<f64>(&Scene::parse(&text).expect("checks"));
+    let s = book_settings::<f64>(&Scene::parse(&text).expect("checks")).expect("reads");
     let d = BookSettings::<f64>::default();
     assert_eq!(s.merge_frames, 4 * d.merge_frames);
     assert_eq!(s.flip_frames, 4 * d.flip_frames);
@@ -89,7 +94,7 @@ fn the_grid_and_precision_reach_the_page_models() {
     let (text, _) = with_solver("mass-spring-turn", "grid = [6, 9]\nprecision = \"f32\"");
     let scene = Scene::parse(&text).expect("checks");
     assert_eq!(scene.precision(), Precision::F32);
-    let s = spring_settings::<f32>(&scene, false);
+    let s = spring_settings::<f32>(&scene, false).expect("reads");
     assert_eq!((s.particles_across, s.particles_along), (7, 10));
     // The same page: its mass shared by 70 particles instead of 108.
     let d = folio_pages::spring::SpringSettings::<f32>::default();
@@ -101,34 +106,58 @@ fn the_grid_and_precision_reach_the_page_models() {
     let (text, _) = with_solver("mass-spring-turn", "integrator = \"implicit-euler\"");
     let scene = Scene::parse(&text).expect("checks");
     assert_eq!(
-        spring_settings::<f64>(&scene, false).integrator,
+        spring_settings::<f64>(&scene, false)
+            .expect("reads")
+            .integrator,
         folio_pages::spring::Integrator::ImplicitEuler
     );
     let (text, _) = with_solver("xpbd-turn", "grid = [5, 7]");
     let scene = Scene::parse(&text).expect("checks");
     assert_eq!(scene.precision(), Precision::F64);
-    let s = xpbd_settings::<f64>(&scene, false);
+    let s = xpbd_settings::<f64>(&scene, false).expect("reads");
     assert_eq!((s.quads_across, s.quads_along), (5, 7));
 }
 
 #[test]
 fn a_key_out_of_range_is_refused_at_its_value() {
-    for grid in ["grid = [1, 10]", "grid = [10, 65]"] {
-        refused_at_value("page-turn", grid, "each between 2 and 64");
-    }
-    refused_at_value("xpbd-turn", "grid = [0, 3]", "each between 2 and 64");
+    // The model's own range, in the new key's name.
+    refused_at_value(
+        "page-turn",
+        "grid = [1, 10]",
+        "`book.quads_across` must be at least 2",
+    );
+    refused_at_value(
+        "page-turn",
+        "grid = [10, 1]",
+        "`book.quads_along` must be at least 2",
+    );
+    refused_at_value("xpbd-turn", "grid = [0, 3]", "`xpbd.quads_across` must be");
+    // The older key's own range, for the mass-spring page's particles.
+    refused_at_value(
+        "mass-spring-turn",
+        "grid = [6, 65]",
+        "each between 2 and 64",
+    );
     for t in [
         "newton_tolerance = nan",
         "newton_tolerance = -1e-3",
         "newton_tolerance = inf",
     ] {
-        refused_at_value("page-turn", t, "finite and >= 0");
+        refused_at_value(
+            "page-turn",
+            t,
+            "`book.solver.tolerance` must be finite and >= 0",
+        );
     }
     for n in ["collision_rounds = 0", "collision_rounds = 17"] {
-        refused_at_value("page-turn", n, "solver.collision_rounds must be in [1, 16]");
+        refused_at_value("page-turn", n, "`book.collision_rounds` must be in [1, 16]");
     }
     for n in ["krylov_restart = 0", "krylov_restart = 51"] {
-        refused_at_value("page-turn", n, "solver.krylov_restart must be in [1, 50]");
+        refused_at_value(
+            "page-turn",
+            n,
+            "`book.solver.krylov_restart` must be in [1, 50]",
+        );
     }
     refused_at_value("page-turn", "time_step = 0.02", "at most one frame");
     refused_at_value("mass-spring-turn", "time_step = 0.05", "at most one frame");
@@ -136,12 +165,12 @@ fn a_key_out_of_range_is_refused_at_its_value() {
     refused_at_value(
         "page-turn",
         "time_step = nan",
-        "solver.time_step must be in [1e-6, 0.1] seconds, not NaN",
+        "`book.solver.time_step` must be in [1e-6, 0.1] seconds, not NaN",
     );
     refused_at_value(
         "page-turn",
         "time_step = 1e-7",
-        "solver.time_step must be in [1e-6, 0.1] seconds, not 1e-7",
+        "`book.solver.time_step` must be in [1e-6, 0.1] seconds, not 1e-7",
     );
     // A precision that does not exist is a serde error at the value.
     let (e, at) = refused("page-turn", "precision = \"f16\"");

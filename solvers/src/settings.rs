@@ -57,19 +57,8 @@ pub struct Settings<T: Real> {
     /// Elimination order of the symbolic analysis. Default: [`Ordering::Amd`] in `f64`,
     /// [`Ordering::AmdQuasiDefinite`] in `f32` (see [`Ordering`] for the measurements).
     pub ordering: Ordering,
-    /// Factorize the Ruiz-equilibrated KKT matrix ([`crate::Kkt::set_equilibration`]).
-    /// Default off. It was on in `f32` while `f32` factorized in AMD's or the delayed
-    /// order without a dual shift: unscaled, that factor left solves with relative residuals
-    /// up to $10^{20}$ on the book's page turn. Under [`Ordering::AmdQuasiDefinite`], the
-    /// `f32` default since, the shifted factor is stable unscaled, and scaling it as well
-    /// biased the solves the refinement accepts (to $\sqrt\varepsilon$ relative, the inertia
-    /// rows dominating the norm): the default book's blocks settled 1.1e-2 page units from
-    /// their `f64` rest, against 5e-5 unscaled (and 5e-5 equilibrated in plain AMD's order).
-    /// Measured on the book's `f32` page turn (x86, the book's other defaults): worst KKT
-    /// relative residual 3.4e-3 scaled, 3.4e-4 unscaled; normal-equation factorizations
-    /// 645 and 368; KKT factorizations 256 and 193; the same DOG residual (9.9e-5, 9.6e-5),
-    /// both merged left. In `f64` refinement reaches 1e-8 either way and the four scaling
-    /// passes would cost 25 %.
+    /// Factorize the Ruiz-equilibrated KKT matrix ([`crate::Kkt::set_equilibration`]). Default
+    /// off (why: `docs/settings.md`).
     pub equilibrate: bool,
     /// A pivot with $s_k d_k \le$ `pivot_epsilon` $\cdot$ scale is regularized (scale: the
     /// largest primal diagonal). Finite, $\ge 0$. Default $1000\thinspace\varepsilon$.
@@ -81,30 +70,20 @@ pub struct Settings<T: Real> {
     /// earlier at `refinement_tolerance` or when the residual stops falling).
     pub refinement_steps: u32,
     /// Restart length $m$ of the refinement's GMRES under [`Ordering::AmdQuasiDefinite`]
-    /// ([`crate::gmres`]): the Krylov basis holds $m + 1$ vectors of the KKT order, the
-    /// largest buffer a solver owns after its factor. A solve whose cycles need more
-    /// iterations restarts from the better iterate (it converges, more slowly). From 1 to
-    /// 50. Default 10: the default book's `f32` page turn needs at most 6 (203 cycles, 119
-    /// of them 2 long); the microcontroller book's at most 2, and it takes 3
-    /// (`folio_book::BookSettings::microcontroller`). Unused in other orderings.
+    /// ([`crate::gmres`]), 1 to 50: the Krylov basis holds $m + 1$ vectors of the KKT order,
+    /// the largest buffer a solver owns after its factor; a solve whose cycles need more
+    /// iterations restarts from the better iterate. Unused in other orderings. Default 10 (why:
+    /// `docs/settings.md`).
     pub krylov_restart: u32,
-    /// Refinement stops at this relative residual $\lVert Kz - b\rVert_\infty/\lVert b\rVert_\infty$.
-    /// Finite, $\ge 0$. Default $\varepsilon^{3/4}$ ($1.8 \cdot 10^{-12}$ in `f64`,
-    /// $6.4 \cdot 10^{-6}$ in `f32`), which keeps Newton's quadratic convergence over several
-    /// iterations. A caller that takes a single Newton iteration per step needs far less:
-    /// the book sets $\sqrt{\varepsilon}$ (`folio_book::BookSettings`).
+    /// Refinement stops at this relative residual $\lVert Kz - b\rVert_\infty/\lVert
+    /// b\rVert_\infty$ (finite, $\ge 0$). Default $\varepsilon^{3/4}$ ($1.8 \cdot 10^{-12}$ in
+    /// `f64`, $6.4 \cdot 10^{-6}$ in `f32`), which keeps Newton's quadratic convergence over
+    /// several iterations; the book, one iteration a step, sets $\sqrt{\varepsilon}$.
     pub refinement_tolerance: T,
-    /// Damping $\rho$ of the constraint projection's normal equations,
-    /// $J W^{-1} J^\top + \rho\thinspace\mathrm{diag}(J W^{-1} J^\top)$
-    /// ([`crate::normal_equations::NormalEquations::assemble`]). Finite, $\ge 0$. Default 0 in
-    /// `f64`, $\varepsilon^{3/4} = 6.4 \cdot 10^{-6}$ in `f32`. The DOG rows of nearly flat
-    /// stars make $J W^{-1} J^\top$ nearly singular (eigenvalues near the square of the
-    /// flat-star remedy's offset: $10^{-12}$ in `f64`, $10^{-6}$ in `f32`). In `f32` its factor
-    /// cannot resolve them; damped, the page turn's projection needs 4 triangular solves per
-    /// active frame (median; 13 undamped) and ends with a DOG residual of 1.6e-4 (2.4e-4).
-    /// In `f64` the factor resolves them, and a damping of $\varepsilon^{3/4}$ left DOG
-    /// residuals of 2.8e-4 on the page turn against 1.1e-4 undamped
-    /// (`cargo run --release -p folio-bench --example frame_work`).
+    /// Damping $\rho$ of the constraint projection's normal equations, $J W^{-1} J^\top +
+    /// \rho\thinspace\mathrm{diag}(J W^{-1} J^\top)$
+    /// ([`crate::normal_equations::NormalEquations::assemble`]; finite, $\ge 0$). Default 0 in
+    /// `f64`, $\varepsilon^{3/4} = 6.4 \cdot 10^{-6}$ in `f32` (why: `docs/settings.md`).
     pub projection_damping: T,
     /// Evaluate the eq. 3 residual after the last iteration (one gradient and Jacobian
     /// evaluation, no factorization) so the status can say `Converged`. Default on.

@@ -211,7 +211,7 @@ fn spring_settings(
         height: width * log_uniform(aspect, 0.5, 2.0),
         stretch_stiffness: d.stretch_stiffness * k,
         shear_stiffness: d.shear_stiffness * k,
-        bend_stiffness: d.bend_stiffness * k,
+        bend_spring_stiffness: d.bend_spring_stiffness * k,
         particle_weight: if gravity {
             d.particle_weight * log_uniform(weight, 0.1, 10.0)
         } else {

@@ -415,7 +415,7 @@ fn bend_springs_are_quartic_and_the_plate_term_quadratic() {
     for kappa in [1e-3, 1e-2, 5e-2] {
         let x = rolled(&network, hx, kappa);
         let e = bend_springs(&x);
-        let d_eq = bend_spring_equivalent(settings.bend_stiffness, [hx, hz], kappa);
+        let d_eq = bend_spring_equivalent(settings.bend_spring_stiffness, [hx, hz], kappa);
         let expected = 0.5 * d_eq * kappa * kappa * area;
         assert!(
             (e / expected - 1.0).abs() < 0.02 + kappa,

@@ -874,10 +874,10 @@ fn bad_input_gets_typed_errors_and_keeps_the_state() {
         ),
         (
             SpringSettings {
-                bend_stiffness: f64::NAN,
+                bend_spring_stiffness: f64::NAN,
                 ..s
             },
-            "bend_stiffness",
+            "bend_spring_stiffness",
         ),
         (
             SpringSettings {
@@ -1245,7 +1245,7 @@ fn shared_page_turn_variants() {
     let soft = |s: SpringSettings<f64>, by: f64| SpringSettings {
         stretch_stiffness: s.stretch_stiffness / by,
         shear_stiffness: s.shear_stiffness / by,
-        bend_stiffness: s.bend_stiffness / by,
+        bend_spring_stiffness: s.bend_spring_stiffness / by,
         ..s
     };
     let variants = [
@@ -1393,7 +1393,7 @@ fn default_springs_keep_the_explicit_step_stable() {
     let earlier = SpringSettings {
         stretch_stiffness: d.stretch_stiffness / 64.0,
         shear_stiffness: d.shear_stiffness / 64.0,
-        bend_stiffness: d.bend_stiffness / 64.0,
+        bend_spring_stiffness: d.bend_spring_stiffness / 64.0,
         substeps: 1,
         ..d
     };

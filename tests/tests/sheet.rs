@@ -14,7 +14,7 @@ use core::f64::consts::{FRAC_PI_2, PI, TAU};
 use std::collections::HashSet;
 
 use folio_geometry::SheetMesh;
-use folio_geometry::sheet::{ConeLayer, ConeSettings, NONE, Region, SheetError};
+use folio_geometry::sheet::{ConeLayer, ConeLayerSettings, NONE, Region, SheetError};
 use folio_kernels::{Real, Vec3Ops};
 use folio_tests::Rng;
 use glam::{DQuat, DVec3};
@@ -1165,7 +1165,7 @@ fn mean_alignment<T: Real>(m: &SheetMesh<T>, layer: &ConeLayer<T>, dir: [f64; 2]
 
 #[test]
 fn a_flat_sheet_is_one_flat_region() {
-    let settings = ConeSettings::<f64>::default();
+    let settings = ConeLayerSettings::<f64>::default();
     let mut m = sheet::<f64>();
     let q = DQuat::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), 0.7);
     deform(
@@ -1183,7 +1183,7 @@ fn a_flat_sheet_is_one_flat_region() {
 }
 
 fn cylinder_along_v<T: Real>(tol: f64) {
-    let settings = ConeSettings::<T>::default();
+    let settings = ConeLayerSettings::<T>::default();
     let r = 4.0;
     let mut m = sheet::<T>();
     let q = DQuat::from_axis_angle(DVec3::new(-0.3, 1.0, 0.2).normalize(), 1.3);
@@ -1236,7 +1236,7 @@ fn a_cylinder_along_v_has_curvature_one_over_r_and_rulings_along_v_f32() {
 
 #[test]
 fn a_diagonal_cylinder_has_diagonal_rulings_and_the_remesh_follows_them() {
-    let settings = ConeSettings::<f64>::default();
+    let settings = ConeLayerSettings::<f64>::default();
     let r = 4.0;
     let angle = (H / W).atan();
     let dir = [angle.cos(), angle.sin()];
@@ -1310,7 +1310,7 @@ fn a_diagonal_cylinder_has_diagonal_rulings_and_the_remesh_follows_them() {
 
 #[test]
 fn remesh_on_a_cylinder_along_v() {
-    let settings = ConeSettings::<f64>::default();
+    let settings = ConeLayerSettings::<f64>::default();
     let r = 4.0;
     let mut m = sheet::<f64>();
     deform(&mut m, cylinder(r, FRAC_PI_2, [0.0, 0.0]));
@@ -1334,7 +1334,7 @@ fn remesh_on_a_cylinder_along_v() {
 fn remesh_needs_the_layer_of_the_mesh_as_it_is() {
     // A layer estimated before a topology edit refers to other triangles: remesh does nothing
     // with it, and works again after an update.
-    let settings = ConeSettings::<f64>::default();
+    let settings = ConeLayerSettings::<f64>::default();
     let mut m = sheet::<f64>();
     deform(&mut m, cylinder(4.0, (H / W).atan(), [W / 2.0, H / 2.0]));
     let mut layer = ConeLayer::of(&m, &settings);
@@ -1379,7 +1379,7 @@ fn dihedral_is_positive_toward_the_normal() {
             "no such half-edge"
         );
         // The two-triangle sheet: the bend is seen (with both triangles on the rim).
-        let layer = ConeLayer::of(&m, &ConeSettings::default());
+        let layer = ConeLayer::of(&m, &ConeLayerSettings::default());
         assert!(
             layer.curvature.iter().all(|&k| k * sign > 0.05),
             "{:?}",
@@ -1402,7 +1402,7 @@ fn a_half_bent_sheet_has_junctions_where_the_bend_meets_the_rim() {
     // continuous at u = 6. At this radius (curvature 0.125, the flat threshold 0.05) the
     // rim column would read flat, and junctions appear along the left rim, if the triangles
     // with a rim edge counted in the averaging.
-    let settings = ConeSettings::<f64>::default();
+    let settings = ConeLayerSettings::<f64>::default();
     let mut m = sheet::<f64>();
     deform(&mut m, bend_u(&[(6.0, 0.125), (W, 0.0)]));
     let layer = ConeLayer::of(&m, &settings);
@@ -1446,7 +1446,7 @@ fn a_half_bent_sheet_has_junctions_where_the_bend_meets_the_rim() {
 fn an_s_bend_has_convex_and_concave_regions_with_junctions_between() {
     // u < 6 bends toward +Z, u >= 6 away from it (radius 4 both), tangent continuous: the
     // border of a twist (seed Fig. 13).
-    let settings = ConeSettings::<f64>::default();
+    let settings = ConeLayerSettings::<f64>::default();
     let mut m = sheet::<f64>();
     deform(&mut m, bend_u(&[(6.0, 0.25), (W, -0.25)]));
     let layer = ConeLayer::of(&m, &settings);

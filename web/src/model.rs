@@ -84,13 +84,15 @@ impl Model {
         };
         match *scene.model.get_ref() {
             ModelKind::Dog => Ok(Self::Book(Box::new(
-                Book::new(book_settings(scene)).map_err(|e| refused(&e))?,
+                Book::new(book_settings(scene).map_err(|e| refused(&e))?)
+                    .map_err(|e| refused(&e))?,
             ))),
             ModelKind::Cone => page(Box::new(
                 ConePage::new(ConeSettings::default()).map_err(|e| refused(&e))?,
             )),
             ModelKind::MassSpring => page(Box::new(
-                SpringPage::new(spring_settings(scene, false)).map_err(|e| refused(&e))?,
+                SpringPage::new(spring_settings(scene, false).map_err(|e| refused(&e))?)
+                    .map_err(|e| refused(&e))?,
             )),
             other => Err(WebError::new(format!(
                 "the {} model is not in the browser build: it runs the DOG book (\"dog\"), \

@@ -32,7 +32,8 @@ impl Replay {
         let scene = Scene::parse(text).map_err(|e| WebError::new(e.to_string()))?;
         let fixture = fixtures::text("page-turn").ok_or_else(|| WebError::new("no fixture"))?;
         let script = Script::parse(fixture).map_err(|e| WebError::new(e.to_string()))?;
-        let book = Book::new(book_settings(&scene)).map_err(WebError::book)?;
+        let settings = book_settings(&scene).map_err(|e| WebError::new(e.to_string()))?;
+        let book = Book::new(settings).map_err(WebError::book)?;
         Ok(Self {
             book,
             script,

@@ -118,9 +118,11 @@ fn the_small_atlas_measures_newton_against_the_converged_step() {
 fn a_finer_grid_is_closer_to_the_reference() {
     let scene = Scene::parse(SHORT_TURN).expect("the short turn checks");
     let mut reference = variants::reference(false);
-    for (key, value) in &mut reference.solver {
-        if *key == "grid" {
-            *value = toml::Value::Array(vec![16.into(), 22.into()]);
+    for (key, value) in &mut reference.keys {
+        match key.as_str() {
+            "book.quads_across" => *value = 16.into(),
+            "book.quads_along" => *value = 22.into(),
+            _ => {}
         }
     }
     let grids = [[6, 8], [8, 11], [12, 16]].map(|g| variants::on_grid("dog", g));

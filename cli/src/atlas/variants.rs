@@ -1,12 +1,12 @@
 //! The atlas's declared variants: what each knob is set to, and the scene file that sets it.
 //!
-//! A variant is the scene it is measured on with a few keys set: the page model (`model`)
-//! and the `[solver]` keys of `docs/scenes.md` (grid, precision, time step, Newton
-//! iterations and tolerance, the constraint Hessian, collision rounds, the projection,
-//! substeps, the mass-spring integrator). Everything else is the scene's own: its input, its book, its frames. A
-//! variant of another model than the scene's drops the scene's model-specific tables
-//! (`[book]`, `[weights]`, `[solver]`, `effects`): that model runs its defaults on the
-//! same input.
+//! A variant is the scene it is measured on with a few keys set: the page model (`model`),
+//! `precision`, and the knobs of the model's settings (`docs/scenes.md`: the grid, the
+//! time step, Newton's iterations and tolerance, the constraint Hessian, collision rounds,
+//! the projection, substeps, the mass-spring integrator), each at its key in the model's
+//! section. Everything else is the scene's own: its input, its book, its frames. A variant
+//! of another model than the scene's drops the scene's model sections, `precision` and
+//! `effects`: that model runs its defaults on the same input.
 
 use toml::{Table, Value};
 
@@ -17,8 +17,8 @@ pub struct Variant {
     pub label: String,
     /// The page model (`"dog"`, `"cone"`, `"mass-spring"`, `"xpbd"`).
     pub model: String,
-    /// The `[solver]` keys it sets, in order.
-    pub solver: Vec<(&'static str, Value)>,
+    /// The scene keys it sets (paths from the scene's root), in order.
+    pub keys: Vec<(String, Value)>,
 }
 
 /// The knob values a variant is built from (module docs; `None` keeps the scene's).
@@ -32,7 +32,7 @@ pub struct Knobs {
     pub steps: Option<i64>,
     /// `newton_iterations`.
     pub newton: Option<i64>,
-    /// `newton_tolerance`.
+    /// Newton's `tolerance` (`book.solver.tolerance`).
     pub tolerance: Option<f64>,
     /// `constraint_hessian = true`.
     pub hessian: bool,
@@ -47,38 +47,59 @@ pub struct Knobs {
 }
 
 impl Knobs {
-    /// The `[solver]` keys of these knobs.
-    fn keys(self) -> Vec<(&'static str, Value)> {
-        let mut out = Vec::new();
-        if let Some([a, b]) = self.grid {
-            out.push(("grid", Value::Array(vec![a.into(), b.into()])));
+    /// The scene keys of these knobs on `model` (paths from the scene's root: a model's
+    /// settings are its section's keys, `book.quads_across`, `spring.substeps`).
+    fn keys(self, model: &str) -> Vec<(String, Value)> {
+        let kind = folio_scene::scene::ModelKind::ALL
+            .into_iter()
+            .find(|m| m.name() == model);
+        let section = kind.and_then(|m| m.section()).unwrap_or(model);
+        let at = |key: &str| format!("{section}.{key}");
+        let dog = model == "dog";
+        let mut out: Vec<(String, Value)> = Vec::new();
+        if let Some(grid) = self.grid {
+            // A mass-spring page counts particles, one more than quads.
+            let (names, extra) = match model {
+                "mass-spring" => (["particles_across", "particles_along"], 1),
+                _ => (["quads_across", "quads_along"], 0),
+            };
+            for (name, quads) in names.into_iter().zip(grid) {
+                out.push((at(name), (quads + extra).into()));
+            }
         }
         if self.f32 {
-            out.push(("precision", "f32".into()));
+            out.push(("precision".into(), "f32".into()));
         }
+        let solver = |key: &str| {
+            if dog {
+                at(&format!("solver.{key}"))
+            } else {
+                at(key)
+            }
+        };
         if let Some(k) = self.steps {
-            out.push(("time_step", Value::Float(FRAME / k as f64)));
+            out.push((solver("time_step"), Value::Float(FRAME / k as f64)));
         }
         if let Some(n) = self.newton {
-            out.push(("newton_iterations", n.into()));
+            out.push((solver("newton_iterations"), n.into()));
         }
         if let Some(t) = self.tolerance {
-            out.push(("newton_tolerance", t.into()));
+            out.push((solver("tolerance"), t.into()));
         }
         if self.hessian {
-            out.push(("constraint_hessian", true.into()));
+            out.push((solver("constraint_hessian"), true.into()));
         }
         if let Some(r) = self.collision_rounds {
-            out.push(("collision_rounds", r.into()));
+            out.push((at("collision_rounds"), r.into()));
         }
         if self.no_projection {
-            out.push(("projection", false.into()));
+            out.push((at("projection_iterations"), 0.into()));
         }
         if let Some(n) = self.substeps {
-            out.push(("substeps", n.into()));
+            out.push((at("substeps"), n.into()));
         }
         if self.implicit {
-            out.push(("integrator", "implicit-euler".into()));
+            out.push((at("integrator"), "implicit-euler".into()));
         }
         out
     }
@@ -125,7 +146,7 @@ impl Knobs {
         Variant {
             label: format!("{model} {knobs}"),
             model: model.to_string(),
-            solver: self.keys(),
+            keys: self.keys(model),
         }
     }
 }
@@ -309,14 +330,14 @@ pub fn on_grid(model: &str, grid: [i64; 2]) -> Variant {
 
 /// The scene file of `variant` on the scene `base` (a parsed scene file): `name` becomes
 /// `name`, `model` the variant's, `description` says which variant of the base it is, its
-/// `[solver]` keys are set; a variant of another model than the scene's drops `[book]`,
-/// `[weights]`, `[solver]` and `effects` first.
+/// keys are set; a variant of another model than the scene's drops the base's model
+/// sections (`[book]`, `[spring]`, `[xpbd]`), its `precision` and `effects` first.
 #[must_use]
 pub fn scene_text(base: &Table, variant: &Variant, name: &str) -> String {
     let mut table = base.clone();
     let same_model = table.get("model").and_then(Value::as_str) == Some(variant.model.as_str());
     if !same_model {
-        for key in ["book", "weights", "solver", "effects"] {
+        for key in ["book", "spring", "xpbd", "precision", "effects"] {
             table.remove(key);
         }
     }
@@ -328,17 +349,27 @@ pub fn scene_text(base: &Table, variant: &Variant, name: &str) -> String {
         None => format!("atlas variant {}", variant.label),
     };
     table.insert("description".into(), description.into());
-    if !variant.solver.is_empty() {
-        let solver = table
-            .entry("solver")
-            .or_insert_with(|| Value::Table(Table::new()));
-        if let Value::Table(solver) = solver {
-            for (key, value) in &variant.solver {
-                solver.insert((*key).into(), value.clone());
+    for (path, value) in &variant.keys {
+        set(&mut table, path, value.clone());
+    }
+    toml::to_string(&table).unwrap_or_default()
+}
+
+/// Sets the dotted `path` of `table` to `value`, creating its tables.
+fn set(table: &mut Table, path: &str, value: Value) {
+    match path.split_once('.') {
+        None => {
+            table.insert(path.into(), value);
+        }
+        Some((head, rest)) => {
+            let inner = table
+                .entry(head)
+                .or_insert_with(|| Value::Table(Table::new()));
+            if let Value::Table(inner) = inner {
+                set(inner, rest, value);
             }
         }
     }
-    toml::to_string(&table).unwrap_or_default()
 }
 
 /// A file-name-safe form of `label` (`"dog 12x16, newton 2"` → `"dog-12x16-newton-2"`).

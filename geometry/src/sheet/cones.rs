@@ -22,7 +22,7 @@
 //! surface is straight).
 //!
 //! **Regions.** A triangle is [`Region::Flat`] when $|\kappa_1|$ is below
-//! [`ConeSettings::flat_curvature`], otherwise curved with the sign of $\kappa_1$
+//! [`ConeLayerSettings::flat_curvature`], otherwise curved with the sign of $\kappa_1$
 //! ([`Region::Convex`], [`Region::Concave`]): two cones bent in opposite directions, as in the
 //! twist of seed Fig. 13, are different regions.
 //!
@@ -34,7 +34,7 @@
 //! **Remesh** ([`ConeLayer::remesh`]): passes over the interior edges between two curved
 //! triangles, until a pass flips nothing (at most eight); an edge is flipped when the other
 //! diagonal of its quad follows the mean ruling of the two triangles better by
-//! [`ConeSettings::flip_margin`] in $|\cos|$ (hysteresis, so that the mesh does not flip back
+//! [`ConeLayerSettings::flip_margin`] in $|\cos|$ (hysteresis, so that the mesh does not flip back
 //! and forth between frames), and the two new triangles take that mean ruling. A flip that
 //! would make a sliver or a clockwise triangle is skipped. The vertex count never changes,
 //! so the mesh stays as coarse as it was (seed Sec. 7.6: about a hundred triangles).
@@ -73,7 +73,7 @@ pub enum Region {
     serde(default, deny_unknown_fields)
 )]
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ConeSettings<T: Real> {
+pub struct ConeLayerSettings<T: Real> {
     /// Curvature magnitude (1 / sheet unit) below which a triangle is flat.
     pub flat_curvature: T,
     /// Improvement in $|\cos|$ between the edge and the ruling that a flip needs, in
@@ -81,7 +81,7 @@ pub struct ConeSettings<T: Real> {
     pub flip_margin: T,
 }
 
-impl<T: Real> Default for ConeSettings<T> {
+impl<T: Real> Default for ConeLayerSettings<T> {
     /// Flat below a curvature of 0.05 (a radius of 20 sheet units), flips for an
     /// improvement of 0.2 in $|\cos|$.
     fn default() -> Self {
@@ -128,7 +128,7 @@ impl<T: Real> ConeLayer<T> {
 
     /// The layer of `mesh` as it is deformed now.
     #[must_use]
-    pub fn of(mesh: &SheetMesh<T>, settings: &ConeSettings<T>) -> Self {
+    pub fn of(mesh: &SheetMesh<T>, settings: &ConeLayerSettings<T>) -> Self {
         let mut layer = Self::default();
         layer.update(mesh, settings);
         layer
@@ -136,7 +136,7 @@ impl<T: Real> ConeLayer<T> {
 
     /// Re-estimates the layer of `mesh` into the existing buffers (no allocation once they
     /// have grown to the mesh's size).
-    pub fn update(&mut self, mesh: &SheetMesh<T>, settings: &ConeSettings<T>) {
+    pub fn update(&mut self, mesh: &SheetMesh<T>, settings: &ConeLayerSettings<T>) {
         let n = mesh.triangle_count();
         self.topology = Some(mesh.topology_version());
         self.shape.clear();
@@ -231,7 +231,7 @@ impl<T: Real> ConeLayer<T> {
     /// except in the flips themselves (a topology edit). A flip whose new triangles
     /// $(c, a, d)$, $(d, b, c)$ would be clockwise or slivers in the pattern is skipped
     /// before the mesh is asked (the mesh would refuse it the same way, after copying itself).
-    pub fn remesh(&mut self, mesh: &mut SheetMesh<T>, settings: &ConeSettings<T>) -> usize {
+    pub fn remesh(&mut self, mesh: &mut SheetMesh<T>, settings: &ConeLayerSettings<T>) -> usize {
         let n = mesh.triangle_count();
         if self.topology != Some(mesh.topology_version()) || self.rulings.len() != n {
             return 0;

@@ -108,7 +108,7 @@ impl<T: Real> SpringNetwork<T> {
             let k = match kind {
                 SpringKind::Stretch => settings.stretch_stiffness,
                 SpringKind::Shear => settings.shear_stiffness,
-                SpringKind::Bend => settings.bend_stiffness,
+                SpringKind::Bend => settings.bend_spring_stiffness,
             };
             let spring = Spring {
                 rest_length: math::length::<T>(rest[a] - rest[b]),

@@ -96,13 +96,13 @@ pub struct SpringSettings<T: Real> {
     /// Stiffness $k$ of the shear springs (cell diagonals), finite, $\ge 0$.
     pub shear_stiffness: T,
     /// Stiffness $k$ of the bend springs (two apart along a grid line), finite, $\ge 0$.
-    pub bend_stiffness: T,
+    pub bend_spring_stiffness: T,
     /// Plate bending stiffness $D$ of the page (energy: mass·length²/s², N·m in SI), finite,
     /// $\ge 0$: the plate term $V_{\mathrm{bend}}$ of [`super::bending`] (second
     /// differences and cell twists on the rest grid), which tends to
     /// $\frac D2\int\kappa_1^2 + \kappa_2^2\,dA$ at every grid. Default 0
     /// (no term: the seed's page bends by its bend springs alone, which have no linear
-    /// bending stiffness, see [`super::bending`]). Not the bend springs' `bend_stiffness`.
+    /// bending stiffness, see [`super::bending`]). Not the bend springs' `bend_spring_stiffness`.
     pub bending_stiffness: T,
     /// Particle masses by area ([`super::bending::mass_share`]): an inner particle weighs
     /// `particle_mass`, an edge particle half of it and a corner a quarter, and likewise
@@ -209,7 +209,7 @@ impl<T: Real> Default for SpringSettings<T> {
             particle_mass: T::from_f64(mass),
             stretch_stiffness: T::from_f64(115_200.0 * mass),
             shear_stiffness: T::from_f64(28_800.0 * mass),
-            bend_stiffness: T::from_f64(28_800.0 * mass),
+            bend_spring_stiffness: T::from_f64(28_800.0 * mass),
             bending_stiffness: T::ZERO,
             area_masses: false,
             damping: T::from_f64(-0.7125 * mass),
@@ -271,7 +271,7 @@ impl<T: Real> SpringSettings<T> {
             particle_mass: T::ONE,
             stretch_stiffness: T::ONE,
             shear_stiffness: T::ONE,
-            bend_stiffness: T::ONE,
+            bend_spring_stiffness: T::ONE,
             bending_stiffness: T::ZERO,
             area_masses: false,
             damping: T::from_f64(-0.7125),
@@ -298,7 +298,7 @@ impl<T: Real> SpringSettings<T> {
     /// - masses by area ([`SpringSettings::area_masses`]): `particle_mass` $= \rho h_x h_z$
     ///   and `particle_weight` $= \rho h_x h_z\thinspace g$ (an inner particle's);
     /// - `bending_stiffness` $= D$, the plate term of [`super::bending`];
-    /// - no bend springs (`bend_stiffness` 0): they have no linear bending stiffness and would
+    /// - no bend springs (`bend_spring_stiffness` 0): they have no linear bending stiffness and would
     ///   stiffen the page as it bends ([`super::bending::bend_spring_equivalent`]);
     /// - stretch springs of stiffness $Y$, the page's membrane stiffness
     ///   ([`PhysicalPage::membrane_stiffness`]; a spring of a square cell carries a strip as
@@ -327,7 +327,7 @@ impl<T: Real> SpringSettings<T> {
             particle_weight: m * page.gravity,
             stretch_stiffness: page.membrane_stiffness,
             shear_stiffness: page.membrane_stiffness * T::from_f64(0.25),
-            bend_stiffness: T::ZERO,
+            bend_spring_stiffness: T::ZERO,
             bending_stiffness: page.bending_stiffness,
             area_masses: true,
             damping: m * T::from_f64(-0.7125),
@@ -358,7 +358,7 @@ impl<T: Real> SpringSettings<T> {
             clamped_spine: self.fixed_spine && self.clamped_spine,
             spring_stiffness: self.stretch_stiffness.to_f64()
                 + self.shear_stiffness.to_f64()
-                + self.bend_stiffness.to_f64(),
+                + self.bend_spring_stiffness.to_f64(),
             plate_stiffness: self.bending_stiffness.to_f64(),
             particle_mass: self.particle_mass.to_f64(),
             area_masses: self.area_masses,
@@ -414,7 +414,7 @@ impl<T: Real> SpringSettings<T> {
         for (field, v) in [
             ("stretch_stiffness", self.stretch_stiffness),
             ("shear_stiffness", self.shear_stiffness),
-            ("bend_stiffness", self.bend_stiffness),
+            ("bend_spring_stiffness", self.bend_spring_stiffness),
             ("bending_stiffness", self.bending_stiffness),
             ("particle_weight", self.particle_weight),
         ] {

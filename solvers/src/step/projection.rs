@@ -105,7 +105,7 @@ impl<T: Real> Solver<T> {
     /// more than it saved, f85c306), and allocates nothing. The one-Newton-step
     /// default leaves $C = O(\lVert\Delta x\rVert^2)$ behind, and a collision push of depth
     /// $d$ leaves $C = O(d/\ell)$ (module docs); this removes both. Iterates until
-    /// $\lVert C\rVert_\infty \le$ `tolerance` or `max_steps` iterations; each iteration
+    /// $\lVert C\rVert_\infty \le$ `tolerance` or `max_iterations` iterations; each iteration
     /// halves its step (up to 6 times) until $\lVert C\rVert_\infty$ falls, and one that
     /// cannot lower it ends the projection. Does
     /// nothing (zero steps) before the first successful step of the topology. The normal
@@ -122,7 +122,7 @@ impl<T: Real> Solver<T> {
         state: &mut State<T>,
         pins: Pins<'_, T>,
         tolerance: T,
-        max_steps: u32,
+        max_iterations: u32,
     ) -> Result<Correction<T>, SolverError> {
         let mut out = Correction {
             steps: 0,
@@ -173,7 +173,7 @@ impl<T: Real> Solver<T> {
             return Ok(out);
         }
         out.before = residual;
-        while out.steps < max_steps && residual > tolerance {
+        while out.steps < max_iterations && residual > tolerance {
             let Some(next) = w.project_once(model, &s, pins, tolerance, residual, &mut out)? else {
                 break;
             };

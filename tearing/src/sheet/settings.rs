@@ -7,7 +7,7 @@
 //! coarse mesh spreads the stress concentration at a tip over a whole triangle).
 
 use crate::TearSettings;
-use folio_geometry::sheet::ConeSettings;
+use folio_geometry::sheet::ConeLayerSettings;
 use folio_kernels::Real;
 use folio_kernels::membrane::MembraneLaw;
 
@@ -152,7 +152,7 @@ pub struct SheetSettings<T: Real> {
     /// The effects.
     pub effects: SheetEffects,
     /// The cone layer's thresholds.
-    pub cones: ConeSettings<T>,
+    pub cones: ConeLayerSettings<T>,
     /// The tearing step's parameters.
     pub tearing: TearSettings,
 }
@@ -181,7 +181,7 @@ impl<T: Real> Default for SheetSettings<T> {
             max_propagations: 2,
             reserved_vertices: 256,
             effects: SheetEffects::default(),
-            cones: ConeSettings::default(),
+            cones: ConeLayerSettings::default(),
             tearing: TearSettings::default(),
         }
     }

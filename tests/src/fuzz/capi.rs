@@ -32,11 +32,25 @@ pub const MAX_STEPS: usize = 12;
 /// Calls one input may make.
 pub const MAX_CALLS: usize = 64;
 
-/// Decodes a sequence of calls from `data` and makes them.
+/// How many calls returned each status, by its code (`FolioStatus as usize`).
+pub type StatusCounts = [usize; 16];
+
+/// The harness: [`walk`].
+///
+/// # Panics
+/// As [`walk`].
+pub fn run(data: &[u8]) {
+    walk(data);
+}
+
+/// Decodes a sequence of calls from `data` and makes them; how many calls returned each
+/// status (the seeded test `tests/tests/capi_random_calls.rs` asserts that its walks reach
+/// every kind of failure).
 ///
 /// # Panics
 /// When a property in the module docs does not hold.
-pub fn run(data: &[u8]) {
+pub fn walk(data: &[u8]) -> StatusCounts {
+    let mut counts = [0; 16];
     let mut input = Input::new(data);
     let mut live: Vec<FolioBookHandle> = Vec::new();
     let mut dead: Vec<FolioBookHandle> = vec![FolioBookHandle::default()];
@@ -53,7 +67,7 @@ pub fn run(data: &[u8]) {
             _ if !live.is_empty() => live[input.below(live.len())],
             _ => FolioBookHandle::default(),
         };
-        match input.below(12) {
+        let status = match input.below(12) {
             0 if created < MAX_BOOKS => {
                 created += 1;
                 let s = settings(&mut input);
@@ -68,29 +82,30 @@ pub fn run(data: &[u8]) {
                 if status == FolioStatus::Ok && !out_ptr.is_null() {
                     live.push(out);
                 }
+                status
             }
             1 => {
-                if checked("destroy", folio_book_destroy(h)) == FolioStatus::Ok {
+                let status = checked("destroy", folio_book_destroy(h));
+                if status == FolioStatus::Ok {
                     live.retain(|&x| x != h);
                     dead.push(h);
                 }
+                status
             }
             2 => {
                 let side = input.below(4) as u32;
                 let (u, v) = (coordinate(&mut input).abs(), coordinate(&mut input).abs());
                 let pages = input.below(4) as u32;
-                checked("grab", folio_book_grab(h, side, u, v, pages));
+                checked("grab", folio_book_grab(h, side, u, v, pages))
             }
             3 | 4 => {
                 let p = [(); 3].map(|()| coordinate(&mut input));
-                checked("drag", folio_book_drag(h, p[0], p[1], p[2]));
+                checked("drag", folio_book_drag(h, p[0], p[1], p[2]))
             }
-            5 => {
-                checked("release", folio_book_release(h));
-            }
+            5 => checked("release", folio_book_release(h)),
             6 | 7 if steps < MAX_STEPS => {
                 steps += 1;
-                step(h, input.byte() == 0);
+                step(h, input.byte() == 0)
             }
             8 => mesh(h, &mut input),
             9 => {
@@ -103,15 +118,19 @@ pub fn run(data: &[u8]) {
                 if status == FolioStatus::Ok {
                     assert!(xyz.iter().all(|x| x.is_finite()), "page positions {xyz:?}");
                 }
+                status
             }
             10 => {
                 let mut xyz = [0.0f64; 3];
                 // SAFETY: `xyz` holds 3 doubles.
                 checked("held_position", unsafe {
                     folio_book_held_position(h, xyz.as_mut_ptr())
-                });
+                })
             }
             _ => messages(&mut input),
+        };
+        if let Some(count) = counts.get_mut(status as usize) {
+            *count += 1;
         }
     }
     for h in live {
@@ -121,6 +140,7 @@ pub fn run(data: &[u8]) {
             "destroying a live book"
         );
     }
+    counts
 }
 
 /// Checks a call's status and the thread's message (module docs).
@@ -214,7 +234,7 @@ fn length(input: &mut Input<'_>, needed: usize) -> usize {
 }
 
 /// One step of `h` (a NULL report when `null`); a successful step's report is finite.
-fn step(h: FolioBookHandle, null: bool) {
+fn step(h: FolioBookHandle, null: bool) -> FolioStatus {
     let mut r = core::mem::MaybeUninit::<FolioStepReport>::uninit();
     let out = if null {
         ptr::null_mut()
@@ -235,12 +255,13 @@ fn step(h: FolioBookHandle, null: bool) {
         ];
         assert!(values.iter().all(|v| v.is_finite()), "step report {r:?}");
     }
+    status
 }
 
 /// The mesh of `h` through `mesh_size` and `mesh_copy`, one buffer of the four (positions,
 /// normals, texture coordinates, indices) at a length around the needed one and the rest
 /// exact: a copied mesh is finite and its indices in range.
-fn mesh(h: FolioBookHandle, input: &mut Input<'_>) {
+fn mesh(h: FolioBookHandle, input: &mut Input<'_>) -> FolioStatus {
     let (mut vertices, mut triangles) = (0u32, 0u32);
     // SAFETY: valid out-pointers.
     let sized = checked("mesh_size", unsafe {
@@ -273,11 +294,12 @@ fn mesh(h: FolioBookHandle, input: &mut Input<'_>) {
         let in_range = indices.iter().take(3 * t).all(|&i| i < vertices);
         assert!(in_range, "indices in range");
     }
+    copied
 }
 
 /// The last-error message into a buffer of any length (always NUL-terminated when not
 /// empty), and the name of any status code (never NULL).
-fn messages(input: &mut Input<'_>) {
+fn messages(input: &mut Input<'_>) -> FolioStatus {
     let len = input.below(40);
     let mut buf = vec![0 as core::ffi::c_char; len];
     let mut needed = 0usize;
@@ -292,4 +314,5 @@ fn messages(input: &mut Input<'_>) {
     }
     let name = folio_status_name(input.byte().into());
     assert!(!name.is_null(), "every code has a name");
+    status
 }
