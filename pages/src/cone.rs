@@ -499,17 +499,9 @@ impl<T: Real> PageModel<T> for ConePage<T> {
         Ok(())
     }
 
-    /// The one page again, wherever it lies ([`ConePage::side`]): a grab on the other
-    /// side, or of a stack, is refused.
-    fn grab_page(&mut self, side: BlockSide, pages: u32, at: [T; 2]) -> Result<(), PageError> {
-        super::one_page(pages)?;
-        if side != self.side() {
-            return Err(PageError::Gesture(super::GestureError::NoPage {
-                side,
-                model: "cone",
-            }));
-        }
-        self.grab(at)
+    /// Where the page lies ([`ConePage::side`]).
+    fn lying_side(&self) -> BlockSide {
+        self.side()
     }
 
     fn drag(&mut self, finger: T::Vec3) -> Result<(), PageError> {

@@ -6,7 +6,7 @@
 use crate::BlockSide;
 use folio_kernels::{Real, Vec3Ops};
 
-use crate::{GestureError, PageError, check_finger, lying_side, one_page};
+use crate::{PageError, check_finger};
 
 /// The held material point and the finger.
 #[derive(Clone, Copy, Debug)]
@@ -37,23 +37,6 @@ impl<T: Real> Hold<T> {
     /// The finger's displacement from the held point's rest position, once dragged.
     pub fn displacement(&self) -> Option<T::Vec3> {
         self.finger.map(|f| f - self.rest_point)
-    }
-}
-
-/// The check of `PageModel::grab_page` on a one-page model whose particles are at `x`:
-/// one page, on the side where it lies (left of the spine when its particles' mean X is
-/// negative); a grab on the other side, or of a stack, is refused.
-pub(crate) fn check_side<T: Real>(
-    model: &'static str,
-    x: &[T::Vec3],
-    side: BlockSide,
-    pages: u32,
-) -> Result<(), PageError> {
-    one_page(pages)?;
-    if side == lying_side::<T>(x) {
-        Ok(())
-    } else {
-        Err(PageError::Gesture(GestureError::NoPage { side, model }))
     }
 }
 

@@ -184,21 +184,35 @@ pub trait PageModel<T: Real> {
 
     /// Takes hold of `pages` pages lying on `side` at the material point `at` (the gesture
     /// of a [`Gestures`] sequence): the next page of that side, or, for a model of one page,
-    /// that page again. The default is [`PageModel::grab`] for one page on the right, where
-    /// every model's page starts, and refuses anything else.
+    /// that page again. The default is for a model of one page: one page, on the side where
+    /// it lies ([`PageModel::lying_side`]), taken by [`PageModel::grab`] and then
+    /// [`PageModel::taken_from`]; anything else is refused.
     ///
     /// # Errors
     /// As [`PageModel::grab`]; [`PageError::Gesture`] for a grab the model cannot take.
     fn grab_page(&mut self, side: BlockSide, pages: u32, at: [T; 2]) -> Result<(), PageError> {
         one_page(pages)?;
-        if side == BlockSide::Left {
+        if side != self.lying_side() {
             return Err(PageError::Gesture(GestureError::NoPage {
                 side,
                 model: self.name(),
             }));
         }
-        self.grab(at)
+        self.grab(at)?;
+        self.taken_from(side);
+        Ok(())
     }
+
+    /// The side of the spine a model of one page lies on, where [`PageModel::grab_page`]
+    /// takes it. The default: the right, where every model's page starts.
+    fn lying_side(&self) -> BlockSide {
+        BlockSide::Right
+    }
+
+    /// Called by [`PageModel::grab_page`] after it took the one page from `side`: a model
+    /// whose page may lie on the left holds it there as it lies (the particle pages mirror
+    /// their grip across the spine). The default does nothing.
+    fn taken_from(&mut self, _side: BlockSide) {}
 
     /// Lets go; the page finishes its turn (or falls back) on its own.
     fn release(&mut self);

@@ -521,15 +521,13 @@ impl<T: Real> PageModel<T> for SpringPage<T> {
         Ok(())
     }
 
-    /// The one page again where it lies (left of the spine when its particles' mean X is
-    /// negative); on the left the grip's rest positions are mirrored across the spine, so
-    /// that a finger starting at $(-u, 0, v)$ holds the page where it lies. A grab on the
-    /// other side, or of a stack, is refused.
-    fn grab_page(&mut self, side: BlockSide, pages: u32, at: [T; 2]) -> Result<(), PageError> {
-        hold::check_side::<T>("mass-spring", &self.state.x, side, pages)?;
-        self.grab(at)?;
+    /// Left of the spine when its particles' mean X is negative.
+    fn lying_side(&self) -> BlockSide {
+        crate::lying_side::<T>(&self.state.x)
+    }
+
+    fn taken_from(&mut self, side: BlockSide) {
         hold::taken_from(&mut self.hold, side);
-        Ok(())
     }
 
     fn drag(&mut self, finger: T::Vec3) -> Result<(), PageError> {
