@@ -8,7 +8,7 @@ cell is `passed/variants` at one height.
     cargo build --release -p folio
     python3 bench/turn_sweep.py                                  # 8 x 11, f64 and f32
     python3 bench/turn_sweep.py --grid 6x8 --grid 12x16 --precision f32
-    python3 bench/turn_sweep.py --solver 'newton_iterations = 4'
+    python3 bench/turn_sweep.py --book 'solver.newton_iterations = 4' --book 'pull_reach = 2'
 
 A swipe is a `drag` event whose point has `|x| == 5` (the scene's middle points); its
 height is replaced, the side (sign of x) and the rest kept. A release happens at the
@@ -33,9 +33,10 @@ DELAYS = [0.1, 0.25, 0.5]
 PAGES = re.compile(r"pages at the end\s+left (\d+), right (\d+), held (\d+)")
 
 
-def variant(text: str, height: float, delay: float, solver: str) -> str:
+def variant(text: str, height: float, delay: float, settings: str) -> str:
     """The scene `text` with each swipe's middle point at `height`, each release `delay`
-    seconds after the last drag before it, and `solver` lines added to `[solver]`."""
+    seconds after the last drag before it, and `settings` (root keys such as `precision`
+    and dotted `book.` keys, one per line) put before its first table."""
     out, last_drag, lines = [], None, text.splitlines()
     for i, line in enumerate(lines):
         m = re.match(r"drag = \[(-?5\.0), ([-0-9.]+), ([-0-9.]+)\]", line)
@@ -49,12 +50,9 @@ def variant(text: str, height: float, delay: float, solver: str) -> str:
                 line = f"time = {last_drag + delay:.2f}"
         out.append(line)
     text = "\n".join(out) + "\n"
-    if solver:
-        if "[solver]" in text:
-            text = text.replace("[solver]\n", f"[solver]\n{solver}", 1)
-        else:
-            text = text.replace("\n[[input.events]]", f"\n[solver]\n{solver}\n[[input.events]]", 1)
-    return text
+    first_table = re.search(r"^\[", text, re.MULTILINE)
+    at = first_table.start() if first_table else len(text)
+    return text[:at] + settings + text[at:]
 
 
 def main() -> int:
@@ -64,10 +62,10 @@ def main() -> int:
     p.add_argument("--grid", action="append", help="COLSxROWS, repeatable (default: the scene's)")
     p.add_argument("--precision", action="append", choices=["f64", "f32"])
     p.add_argument(
-        "--solver",
+        "--book",
         action="append",
         default=[],
-        help="a `[solver]` line for every variant, repeatable (e.g. 'newton_iterations = 4')",
+        help="a `[book]` setting for every variant, repeatable (e.g. 'solver.newton_iterations = 4')",
     )
     args = p.parse_args()
     scene, binary = Path(args.scene), Path(args.bin)
@@ -84,16 +82,16 @@ def main() -> int:
     with tempfile.TemporaryDirectory() as tmp:
         for grid in grids:
             for precision in precisions:
-                solver = f'precision = "{precision}"\n' + "".join(f"{line}\n" for line in args.solver)
+                settings = f'precision = "{precision}"\n' + "".join(f"book.{line}\n" for line in args.book)
                 if grid:
                     cols, rows = grid.split("x")
-                    solver += f"grid = [{int(cols)}, {int(rows)}]\n"
+                    settings += f"book.quads_across = {int(cols)}\nbook.quads_along = {int(rows)}\n"
                 cells, total = [], 0
                 for height in HEIGHTS:
                     passed = 0
                     for delay in DELAYS:
                         path = Path(tmp) / f"v_{height}_{delay}.toml"
-                        path.write_text(variant(text, height, delay, solver))
+                        path.write_text(variant(text, height, delay, settings))
                         run = subprocess.run(
                             [str(binary), "run", str(path), "--out", str(Path(tmp) / "out")],
                             capture_output=True,
