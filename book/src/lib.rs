@@ -47,6 +47,7 @@ pub mod quadrature;
 pub mod script;
 pub mod settings;
 pub mod simulation;
+pub mod stock;
 pub mod terms;
 
 pub use bookmark::{Flip, History};
@@ -65,3 +66,4 @@ pub use simulation::{
     Book, BookStepReport, BookmarkOutcome, DragOutcome, GrabOutcome, InputOutcome, PageCounts,
     Phase,
 };
+pub use stock::Stock;

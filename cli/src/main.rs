@@ -304,6 +304,18 @@ fn print_summary(report: &Report, out: &Path, seconds: f64) {
         s.nonfinite_frames, s.health.nonfinite_input_frames, s.health.nonfinite_state_frames
     );
     println!("  step status      {}", statuses.join(", "));
+    if let Some(p) = &report.paper {
+        println!(
+            "  paper            {:.0} x {:.0} mm, {:.0} g/m², {:.0} µm, D = {:.3e} N·m, sag number {:.3}; a book second is {:.3} real s",
+            1e3 * p.width_m,
+            1e3 * p.height_m,
+            p.grammage,
+            1e6 * p.caliper_m,
+            p.bending_stiffness,
+            p.sag_number,
+            p.real_seconds_per_second
+        );
+    }
     println!(
         "  effects          {}",
         if s.effects.is_empty() {

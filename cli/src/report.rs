@@ -196,6 +196,50 @@ pub struct Report {
     /// The tears' log (sheet).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub tearing: Option<TearingLog>,
+    /// The book's paper in physical units (a DOG scene that names a paper other than the
+    /// seed's card).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub paper: Option<PaperRecord>,
+}
+
+/// A DOG book's paper (`folio_book::Paper`) and the book's units under it
+/// (`folio_book::BookUnits`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct PaperRecord {
+    /// Page width, binding to fore-edge (m).
+    pub width_m: f64,
+    /// Page height along the binding (m).
+    pub height_m: f64,
+    /// Mass per area (g/m²).
+    pub grammage: f64,
+    /// Sheet thickness (m).
+    pub caliper_m: f64,
+    /// Plate bending stiffness $D$ (N·m).
+    pub bending_stiffness: f64,
+    /// $\alpha = \rho g L^3 / D$: the page's weight against its stiffness.
+    pub sag_number: f64,
+    /// Metres per page unit.
+    pub metres_per_unit: f64,
+    /// Real seconds per book second $\tau$: one second of the book shows what the real
+    /// page does in $\tau$ seconds, so the book plays the real page $1/\tau$ times slower.
+    pub real_seconds_per_second: f64,
+}
+
+impl PaperRecord {
+    /// The record of `paper` under `units`.
+    #[must_use]
+    pub fn new(paper: &folio_book::Paper, units: &folio_book::BookUnits) -> Self {
+        Self {
+            width_m: paper.width,
+            height_m: paper.height,
+            grammage: 1e3 * paper.areal_density,
+            caliper_m: paper.thickness,
+            bending_stiffness: paper.bending_stiffness,
+            sag_number: paper.sag_number(),
+            metres_per_unit: units.length,
+            real_seconds_per_second: units.time,
+        }
+    }
 }
 
 impl Report {

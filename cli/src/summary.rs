@@ -6,7 +6,7 @@ use alloc::collections::BTreeMap;
 use folio_scene::scene::Scene;
 
 use crate::health;
-use crate::report::{Bounds, FrameRecord, Report, Summary};
+use crate::report::{Bounds, FrameRecord, PaperRecord, Report, Summary};
 
 /// The `q`-quantile (0..=1) of `v` (0 when empty).
 fn quantile(v: &[f64], q: f64) -> f64 {
@@ -111,6 +111,12 @@ impl Report {
             summary,
             frames: records,
             tearing: None,
+            // The scene was checked before its run: its paper reads.
+            paper: scene
+                .paper
+                .as_ref()
+                .and_then(|_| folio_scene::settings::book_paper(scene).ok().flatten())
+                .map(|(paper, units)| PaperRecord::new(&paper, &units)),
         };
         report.judge(&scene.expect);
         report

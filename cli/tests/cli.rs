@@ -531,3 +531,57 @@ fn malformed_scenes_are_refused_at_their_line_and_column() {
     let usage = folio(&dir, &["frobnicate"]);
     assert_eq!(usage.status.code(), Some(2));
 }
+
+/// A scene that names a paper runs on it, and the report gives the paper in physical units
+/// with the figures worked by hand from the stock (card: 300 g/m², 380 µm, 3 GPa across
+/// the grain, ν = 0.3) on an A5 page: D = E t³ / (12 (1 − ν²)), α = ρ g L³ / D, and the
+/// book's clock τ = sqrt(g_b ℓ / g) with ℓ = L / 12 page units and g_b = 9.81 page units/s².
+/// The card's page is stiff enough to hold within the health bounds.
+#[test]
+fn a_scene_on_card_reports_its_paper() {
+    let dir = scratch("paper");
+    let file = dir.join("card.toml");
+    let scene = format!("name = \"card\"\nmodel = \"dog\"\npaper = \"card\"\nframes = 140\n{TURN}");
+    std::fs::write(&file, scene).unwrap();
+    let out = folio(&dir, &["run", file.to_str().unwrap(), "--out", "card"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stdout).contains("  paper            148 x "),
+        "{}",
+        text(&out.stdout)
+    );
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("card/report.json")).unwrap())
+            .unwrap();
+    let paper = &report["paper"];
+    let get = |k: &str| paper[k].as_f64().unwrap_or_else(|| panic!("{k}: {paper}"));
+    let d = 3e9 * 380e-6f64.powi(3) / (12.0 * (1.0 - 0.09));
+    let alpha = 0.3 * 9.81 * 0.148f64.powi(3) / d;
+    let tau = (9.81 * 0.148 / 12.0 / 9.81f64).sqrt();
+    for (key, want) in [
+        ("width_m", 0.148),
+        ("grammage", 300.0),
+        ("caliper_m", 380e-6),
+        ("bending_stiffness", d),
+        ("sag_number", alpha),
+        ("metres_per_unit", 0.148 / 12.0),
+        ("real_seconds_per_second", tau),
+    ] {
+        assert!(
+            (get(key) / want - 1.0).abs() < 1e-9,
+            "{key}: {} against {want}",
+            get(key)
+        );
+    }
+    // The seed's card (and a scene without a paper) has no physical size to report.
+    let seed = dir.join("seed.toml");
+    let scene =
+        format!("name = \"seed\"\nmodel = \"dog\"\npaper = \"seed-card\"\nframes = 2\n{TURN}");
+    std::fs::write(&seed, scene).unwrap();
+    let out = folio(&dir, &["run", seed.to_str().unwrap(), "--out", "seed"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("seed/report.json")).unwrap())
+            .unwrap();
+    assert!(report.get("paper").is_none(), "{report}");
+}

@@ -136,6 +136,11 @@ impl Scene {
                 self.book.as_ref().map(Spanned::span),
             ),
             (
+                "paper",
+                ModelKind::Dog,
+                self.paper.as_ref().map(Spanned::span),
+            ),
+            (
                 "spring",
                 ModelKind::MassSpring,
                 self.spring.as_ref().map(Spanned::span),

@@ -13,11 +13,12 @@
 //! (each settings type's `validate`).
 //!
 //! Features (all default): `sheet` (the tearing sheet's scenes, [`sheet`] and [`hands`]),
-//! `xpbd` (the XPBD page's scenes), `older-keys` (the older spellings of the keys) and
+//! `xpbd` (the XPBD page's scenes), `older-keys` (the older spellings of the keys),
 //! `fixture-reach` (the check that a book fixture's first grab reaches the book,
-//! [`reach`]); the browser build (`folio-web`) leaves them all out, for size (issue 23's
-//! bound): it refuses a sheet or XPBD scene at its `model`, and a file in the older keys
-//! at the first older table.
+//! [`reach`]) and `paper` (a DOG scene's paper, [`paper`]); the browser build
+//! (`folio-web`) leaves them all out, for size (issue 23's bound): it refuses a sheet or
+//! XPBD scene at its `model`, a file in the older keys at the first older table, and a
+//! paper at its `paper` key.
 //!
 //! Layers: the models (`folio-book`, `folio-pages`, `folio-tearing`) below; the `folio`
 //! command and the C API (`folio-capi`) above, both reading scenes through this crate.
@@ -36,6 +37,8 @@ pub mod keys;
 pub mod legacy;
 pub mod name;
 pub mod number;
+#[cfg(feature = "paper")]
+pub mod paper;
 #[cfg(feature = "fixture-reach")]
 pub mod reach;
 pub mod reader;

@@ -32,6 +32,9 @@ pub struct Scene {
     /// The DOG book (`model = "dog"` only): the keys of `folio_book::BookSettings`, read by
     /// [`crate::settings::book_settings`] in the run's precision.
     pub book: Option<Spanned<IgnoredAny>>,
+    /// The DOG book's paper (`model = "dog"` only): a built-in stock's name or a
+    /// `[paper]` table of figures ([`crate::paper`]), given to the book over `[book]`.
+    pub paper: Option<Spanned<IgnoredAny>>,
     /// The mass-spring page (`model = "mass-spring"` only): the keys of
     /// `folio_pages::spring::SpringSettings` ([`crate::settings::spring_settings`]).
     pub spring: Option<Spanned<IgnoredAny>>,

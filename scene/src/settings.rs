@@ -9,7 +9,7 @@
 
 use core::ops::Range;
 
-use folio_book::{BookParams, BookSettings, Effects};
+use folio_book::{BookParams, BookSettings, BookUnits, Effects, Paper};
 use folio_kernels::{Real, SettingError};
 use folio_pages::spring::SpringSettings;
 #[cfg(feature = "xpbd")]
@@ -128,6 +128,47 @@ fn read_section<S: DeserializeOwned + Default>(
             reader::read(value).map_err(|e| SceneError::at(text, e.span, e.message.trim()))
         }
         None => Ok(S::default()),
+    }
+}
+
+/// The paper of a DOG scene's book and the book units it gives ([`folio_book::BookUnits`]:
+/// metres per page unit, real seconds per book second): `None` when the file names no
+/// paper or names the seed's card, whose page has no physical size.
+///
+/// # Errors
+/// As [`book_settings`].
+pub fn book_paper(scene: &Scene) -> Result<Option<(Paper, BookUnits)>, SceneError> {
+    let book = book_settings::<f64>(scene)?;
+    let paper = paper(scene, book.params.aspect_ratio)?;
+    Ok(paper.map(|p| (p, p.units(&book))))
+}
+
+/// The scene's `paper` ([`crate::paper`]) for a page of `aspect_ratio`: `None` when the
+/// file names none or names the seed's card.
+///
+/// # Errors
+/// As [`crate::paper`]'s reading, at its place.
+#[cfg(feature = "paper")]
+fn paper(scene: &Scene, aspect_ratio: f64) -> Result<Option<Paper>, SceneError> {
+    let text = scene.source.as_str();
+    let mut document = document(text)?;
+    match document.doc.get_mut().remove("paper") {
+        Some(value) => crate::paper::paper_of(value, aspect_ratio)
+            .map_err(|(span, message)| SceneError::at(text, Some(span), message)),
+        None => Ok(None),
+    }
+}
+
+/// Without the `paper` feature: a scene that names a paper is refused at its key.
+#[cfg(not(feature = "paper"))]
+fn paper(scene: &Scene, _aspect_ratio: f64) -> Result<Option<Paper>, SceneError> {
+    match &scene.paper {
+        Some(at) => Err(SceneError::at(
+            &scene.source,
+            Some(at.span()),
+            "paper is not in this build (folio-scene without its `paper` feature)",
+        )),
+        None => Ok(None),
     }
 }
 
@@ -270,6 +311,12 @@ fn book_in<T: Real + DeserializeOwned>(scene: &Scene) -> Result<BookSettings<T>,
         scene,
         "book",
     );
+    if let Some(paper) = paper(scene, s.params.aspect_ratio)? {
+        paper.apply(&mut s).map_err(|e| {
+            let at = scene.paper.as_ref().map(Spanned::span);
+            SceneError::at(&scene.source, at, e.to_string())
+        })?;
+    }
     let set = |key: &str| scene.keys.span(&format!("book.{key}")).is_some();
     if !set("params.left_pages") {
         s.params.left_pages = s.params.total_pages / 2;
