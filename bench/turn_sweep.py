@@ -9,6 +9,7 @@ cell is `passed/variants` at one height.
     python3 bench/turn_sweep.py                                  # 8 x 11, f64 and f32
     python3 bench/turn_sweep.py --grid 6x8 --grid 12x16 --precision f32
     python3 bench/turn_sweep.py --book 'solver.newton_iterations = 4' --book 'pull_reach = 2'
+    python3 bench/turn_sweep.py --paper novel
 
 A swipe is a `drag` event whose point has `|x| == 5` (the scene's middle points); its
 height is replaced, the side (sign of x) and the rest kept. A release happens at the
@@ -67,6 +68,7 @@ def main() -> int:
         default=[],
         help="a `[book]` setting for every variant, repeatable (e.g. 'solver.newton_iterations = 4')",
     )
+    p.add_argument("--paper", help="the book's paper for every variant (`paper = NAME`)")
     args = p.parse_args()
     scene, binary = Path(args.scene), Path(args.bin)
     if not binary.is_file() or not scene.is_file():
@@ -83,6 +85,8 @@ def main() -> int:
         for grid in grids:
             for precision in precisions:
                 settings = f'precision = "{precision}"\n' + "".join(f"book.{line}\n" for line in args.book)
+                if args.paper:
+                    settings += f'paper = "{args.paper}"\n'
                 if grid:
                     cols, rows = grid.split("x")
                     settings += f"book.quads_across = {int(cols)}\nbook.quads_along = {int(rows)}\n"

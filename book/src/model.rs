@@ -24,7 +24,7 @@ use folio_kernels::{KernelError, Real, Vec3Ops};
 use super::effects::Effects;
 use super::quadrature::{self, PageBending};
 use super::settings::BookSettings;
-use super::terms::{Contact, DogBoundary, DogInner, Grip, PlanarFix, Pull};
+use super::terms::{Contact, DogBoundary, DogInner, Grip, Isometry, PlanarFix, Pull};
 use folio_solvers::model::{ConstraintSet, Model, PotentialSet, TermVisitor};
 
 /// Where each kind of node lives in the state (module docs).
@@ -134,7 +134,7 @@ pub struct BookTerms<T: Real> {
     binding: ConstraintSet<Binding<T>, 3>,
     bend_inner: PotentialSet<T, DogLaplacianInner<T>, 5>,
     bend_boundary: PotentialSet<T, DogLaplacianBoundary<T>, 3>,
-    iso3d: PotentialSet<T, Iso3d<T>, 2>,
+    iso3d: PotentialSet<T, Isometry<T>, 2>,
     page_gravity: PotentialSet<T, Gravity<T>, 1>,
     pull: PotentialSet<T, Pull<T>, 1>,
     pull_nodes: Vec<usize>,
@@ -144,6 +144,9 @@ pub struct BookTerms<T: Real> {
     /// The largest force of the pull (page masses times page units per s²; see
     /// [`BookTerms::grip_force`]), for the active stack.
     grip: T,
+    /// The page's isometry assembles its projected Hessian
+    /// ([`crate::IsometryHessian::Projected`]).
+    projected_isometry: bool,
     /// One per block and cover node, in node order.
     block_contacts: PotentialSet<T, Contact<T>, 1>,
     /// One per page node, in grid order.
@@ -208,6 +211,7 @@ impl<T: Real> BookTerms<T> {
                 Self::grip_force(settings),
             ],
             grip: Self::grip_force(settings),
+            projected_isometry: settings.isometry_hessian == crate::IsometryHessian::Projected,
             block_contacts: PotentialSet::new(T::ONE),
             page_contacts: PotentialSet::new(T::ONE),
         }
@@ -311,8 +315,11 @@ impl<T: Real> BookTerms<T> {
                 .push(Binding::new(T::HALF)?, as_u32([node, 0, m]));
         }
         for [a, b] in grid.edges() {
-            self.iso3d
-                .push(Iso3d::new(rest_of(a, b))?, as_u32([po + a, po + b]));
+            let edge = Isometry {
+                edge: Iso3d::new(rest_of(a, b))?,
+                projected: self.projected_isometry,
+            };
+            self.iso3d.push(edge, as_u32([po + a, po + b]));
         }
         if self.effects.gravity {
             for k in 0..grid.len() {

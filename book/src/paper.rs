@@ -14,14 +14,18 @@
 //!
 //! **The book's units.** The book works in page units (the seed's page is 12 wide), page
 //! masses (one page weighs 1 by default) and a gravity of 9.81 page units per second².
-//! [`Paper::apply`] keeps the page width, the gravity, the bending weight and every other
-//! weight (the soft isometry, the pull, the glue and the blocks' bending are penalties
-//! tuned against the page's bending, not material figures), and sets what the paper
-//! decides: the page mass that gives the book's page the paper's $\alpha$, the thickness
-//! and the aspect ratio. A book of page units $\ell = L/W_{pu}$ (m) and gravity $g_b$
-//! then runs its seconds at $\tau = \sqrt{g_b\thinspace\ell / g}$ real seconds
-//! ([`BookUnits`]): the book shows a real page's shapes at a $1/\tau$ slower pace (the
-//! default book of an A5 page: $\ell$ = 12.3 mm, $\tau$ = 0.11 s, nine times slower).
+//! [`Paper::apply`] keeps the page width, the gravity, the page mass and every weight but
+//! the page's bending: the soft isometry, the pull and its grip, the glue, the blocks'
+//! bending and the contacts are penalties tuned against the page's *weight* (measured: a
+//! novel page given its sag number by a 46 times heavier page mass, those weights kept,
+//! could not be lifted off its block; with them scaled by the same 46 it turned). So it sets
+//! the bending weight that gives the book's page the paper's $\alpha$, and the thickness
+//! and the aspect ratio, and it asks for the projected isometry Hessian
+//! ([`crate::IsometryHessian`]), which a page that soft needs. A book of page units
+//! $\ell = L/W_{pu}$ (m) and gravity $g_b$ then runs its seconds at
+//! $\tau = \sqrt{g_b\thinspace\ell / g}$ real seconds ([`BookUnits`]): the book shows a
+//! real page's shapes at a $1/\tau$ slower pace (the default book of an A5 page:
+//! $\ell$ = 12.3 mm, $\tau$ = 0.11 s, nine times slower).
 //!
 //! **The default paper** ([`Paper::default`]) is an uncoated book paper of 80 g/m² on an
 //! A5 page (148 x 210 mm, ISO 216), 0.1 mm thick (a density of 800 kg/m³), with Young's
@@ -32,12 +36,13 @@
 //! default *book* ([`crate::BookSettings::default`]) is not this paper: its page has
 //! $\alpha$ = 0.24 (page mass 1, $D$ = 344 page-unit energies), as stiff against its
 //! weight as a card of about 400 g/m² of the same make, the page that the seed's weights
-//! and the built-in gestures were tuned on. [`Paper::apply`] gives a book the real page.
+//! and the built-in gestures were tuned on. [`Paper::apply`] gives a book the real page,
+//! and [`crate::Stock`] names the usual papers.
 
 use core::fmt;
 
 use folio_kernels::Real;
-use folio_kernels::setting::{SettingError, require};
+use folio_kernels::setting::{SettingError, require, require_range};
 
 use super::error::BookError;
 use super::quadrature;
@@ -150,28 +155,37 @@ impl Paper {
     }
 
     /// Gives `settings`' page this paper (module docs): the aspect ratio $H/L$, the
-    /// thickness $t/\ell$ in page units, and the page mass that makes the book's sag number
+    /// thickness $t/\ell$ in page units, the bending weight that makes the book's sag number
     /// $\rho_b g_b W_{pu}^3 / D_b$ this paper's $\alpha$, with $D_b = 2 w_{\mathrm{bend3D}}$
-    /// and $\rho_b$ the page mass over the page's area in page units. The page width, the
-    /// gravity and every weight stay.
+    /// and $\rho_b$ the page mass over the page's area in page units, and the projected
+    /// isometry Hessian. The page width, the gravity, the page mass and every other weight
+    /// stay.
     ///
     /// # Errors
-    /// As [`Paper::validate`], and [`BookError::InvalidSetting`] for settings whose page
-    /// width, gravity or bending weight is not positive and finite.
+    /// As [`Paper::validate`]; [`BookError::InvalidSetting`] for settings whose page width,
+    /// gravity or page mass is not positive and finite, or for a paper whose bending weight
+    /// would leave its range (a sag number above about 167 at the default page mass:
+    /// [`crate::SOFT_BEND_PAGE_MIN`]).
     pub fn apply<T: Real>(&self, settings: &mut BookSettings<T>) -> Result<(), BookError> {
         self.validate()?;
         let width = settings.params.page_width;
         let gravity = settings.gravity.to_f64();
-        let bending = quadrature::bending_stiffness(settings.weights.bend_page.to_f64());
+        let mass = settings.page_mass.to_f64();
         positive("page_width", width)?;
         positive("gravity", gravity)?;
-        positive("weights.bend_page", bending)?;
+        positive("page_mass", mass)?;
         let aspect = self.height / self.width;
-        let area = width * width * aspect;
-        let density = self.sag_number() * bending / (gravity * width * width * width);
+        let density = mass / (width * width * aspect);
+        let stiffness = density * gravity * width * width * width / self.sag_number();
+        let bend_page = stiffness / quadrature::bending_stiffness(1.0);
+        let (lo, hi) = (crate::SOFT_BEND_PAGE_MIN, crate::WEIGHT_RANGES[0].2);
+        require_range("weights.bend_page", bend_page, lo, hi)?;
         settings.params.aspect_ratio = aspect;
         settings.params.page_thickness = self.thickness * width / self.width;
-        settings.page_mass = T::from_f64(density * area);
+        settings.weights.bend_page = T::from_f64(bend_page);
+        if bend_page < crate::WEIGHT_RANGES[0].1 {
+            settings.isometry_hessian = crate::IsometryHessian::Projected;
+        }
         Ok(())
     }
 }
@@ -241,6 +255,10 @@ mod tests {
             );
             assert!((p.page_height() / p.page_width - 0.23 / 0.15).abs() < 1e-12);
             assert!((p.page_thickness / p.page_width - t / 0.15).abs() < 1e-15);
+            let soft = s.weights.bend_page < crate::WEIGHT_RANGES[0].1;
+            let projected = s.isometry_hessian == crate::IsometryHessian::Projected;
+            assert_eq!(projected, soft, "{grammage}");
+            assert_eq!(s.page_mass, 1.0, "the page mass stays");
             let u = paper.units(&s);
             // The book's clock: g_b = g tau^2 / l.
             assert!((s.gravity - GRAVITY * u.time * u.time / u.length).abs() < 1e-9);
@@ -284,8 +302,17 @@ mod tests {
             }),
             "paper.thickness"
         );
-        let mut s = BookSettings::<f64>::default();
-        s.weights.bend_page = 0.0;
+        let mut s = BookSettings::<f64> {
+            page_mass: 0.0,
+            ..BookSettings::default()
+        };
         assert!(p.apply(&mut s).is_err());
+        // A tissue of 12 g/m^2, 30 um, on an A3 page: a sag number of about 620, softer than
+        // the book holds; refused at the bending weight it would need, the book unchanged.
+        let tissue = Paper::from_modulus(0.297, 0.42, 30e-6, 0.012, 2e9, 0.3);
+        let mut s = BookSettings::<f64>::default();
+        let e = tissue.apply(&mut s).unwrap_err();
+        assert!(e.to_string().contains("weights.bend_page"), "{e}");
+        assert_eq!(s, BookSettings::default());
     }
 }

@@ -22,8 +22,9 @@ use folio_solvers::settings::Settings;
 pub struct Weights<T: Real> {
     /// $w_{\mathrm{bend3D}}$, DOG-Laplacian bending of the active page, area-weighted
     /// ([`crate::quadrature`]): the page's bending stiffness is $D = 2 w_{\mathrm{bend3D}}$ at
-    /// every grid. In $[30, 200]$; default 172, the seed's 120 with its unweighted terms (why:
-    /// `docs/settings.md`).
+    /// every grid. In $[30, 200]$, from [`SOFT_BEND_PAGE_MIN`] under
+    /// [`IsometryHessian::Projected`]; default 172, the seed's 120 with its unweighted terms
+    /// (why: `docs/settings.md`).
     pub bend_page: T,
     /// $w_{\mathrm{bend2D}}$, curve-Laplacian bending of the block midlines. In $[100, 10^4]$;
     /// default 200.
@@ -50,6 +51,12 @@ pub const WEIGHT_RANGES: [(&str, f64, f64); 5] = [
     ("weights.iso_page", 3000.0, 3e4),
     ("weights.pull", 50.0, 2000.0),
 ];
+
+/// The lowest `weights.bend_page` under [`IsometryHessian::Projected`], which holds a page
+/// that soft (the exact Hessian holds its range of [`WEIGHT_RANGES`], from 30): a sag number
+/// of 167 at the default page mass, bible paper on an A4 page (`tests/tests/paper_turns.rs`
+/// turns a page at this bound).
+pub const SOFT_BEND_PAGE_MIN: f64 = 0.25;
 
 impl<T: Real> Weights<T> {
     /// Every weight with its path from [`BookSettings`] (`"weights.glue"`), in field order.
@@ -89,6 +96,32 @@ impl<T: Real> Default for Weights<T> {
     }
 }
 
+/// Which Hessian of the soft isometry $V = (\lVert d\rVert^2 - L_0^2)^2$ (seed `000_…`
+/// eq. 13, [`folio_kernels::iso3d`]) the Newton step assembles.
+///
+/// The exact Hessian $8dd^{\mathsf T} + 4sI$, $s = \lVert d\rVert^2 - L_0^2$, is
+/// indefinite on a compressed edge ($s < 0$). Against the seed's stiff page the inertia
+/// $M/h^2$ outweighs that; against a page of real paper, 2.6 (card) to 229 (bible paper)
+/// times softer for its weight, it does not, and the step's inertia correction then shifts
+/// the primal block by up to $7 \cdot 10^5$, 450 times the page's $M/h^2$: measured on a
+/// novel page (sag number 11), the held node stalled 8 page units from the finger and the
+/// page fell back. Dropping the $4sI$ part where $s < 0$ keeps every term positive
+/// semi-definite and the step unshifted: the same page follows the finger and turns.
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "lowercase")
+)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum IsometryHessian {
+    /// $8dd^{\mathsf T} + 4sI$ (the seed's Newton step).
+    #[default]
+    Exact,
+    /// $8dd^{\mathsf T} + 4\max(s, 0)I$: positive semi-definite
+    /// ([`folio_kernels::iso3d::Iso3d::hessian_projected`]).
+    Projected,
+}
+
 /// Everything that defines a simulated book.
 #[cfg_attr(
     feature = "serde",
@@ -108,6 +141,11 @@ pub struct BookSettings<T: Real> {
     /// Potential weights at the reference grid ([`Weights`], each in its range of
     /// [`WEIGHT_RANGES`]; see [`BookSettings::iso_scale`]).
     pub weights: Weights<T>,
+    /// The Hessian of the page's soft isometry (eq. 13) that the Newton step uses
+    /// ([`IsometryHessian`]). Default `Exact`, the seed's; a page softer than it holds
+    /// (`weights.bend_page` below 30: every book paper [`crate::Paper::apply`] gives) takes
+    /// `Projected`.
+    pub isometry_hessian: IsometryHessian,
     /// Gravitational acceleration (page units per s², along −Y; finite, $\ge 0$). Default 9.81.
     pub gravity: T,
     /// Linear air drag $c$ (1/s; finite, $\ge 0$): before each step every velocity is divided
@@ -225,6 +263,7 @@ impl<T: Real> Default for BookSettings<T> {
             quads_across: 8,
             quads_along: 11,
             weights: Weights::default(),
+            isometry_hessian: IsometryHessian::Exact,
             gravity: T::from_f64(9.81),
             air_drag: T::from_f64(3.0),
             page_mass: T::ONE,
@@ -406,6 +445,9 @@ impl<T: Real> BookSettings<T> {
             require_non_negative(field, v.to_f64())?;
         }
         for ((field, v), (_, lo, hi)) in self.weights.named().into_iter().zip(WEIGHT_RANGES) {
+            let soft =
+                field == "weights.bend_page" && self.isometry_hessian == IsometryHessian::Projected;
+            let lo = if soft { SOFT_BEND_PAGE_MIN } else { lo };
             require_range(field, v.to_f64(), lo, hi)?;
         }
         for (field, v) in [

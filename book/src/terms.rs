@@ -6,6 +6,7 @@
 use folio_kernels::contact::ContactPlane;
 use folio_kernels::dog::{DogBoundaryStar, DogInnerStar, FlatStarRemedy};
 use folio_kernels::fix::Fix;
+use folio_kernels::iso3d::Iso3d;
 use folio_kernels::term::{Blocks, NodeVecs, zero_blocks, zero_vecs};
 use folio_kernels::{Constraint, Mat3Ops, Potential, Real, Vec3Ops, math};
 
@@ -87,6 +88,34 @@ pub struct Switched<P> {
     pub kernel: P,
     /// Whether it is on.
     pub active: bool,
+}
+
+/// The soft isometry of one page edge (seed `000_…` eq. 13, [`Iso3d`]) with the Hessian
+/// the book's settings ask for ([`crate::IsometryHessian`]): exact, or with the compressive
+/// part dropped (positive semi-definite). Value and gradient are the edge's own.
+/// Units: length⁴.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Isometry<T: Real> {
+    /// The edge's energy.
+    pub edge: Iso3d<T>,
+    /// Assemble [`Iso3d::hessian_projected`] instead of the exact Hessian.
+    pub projected: bool,
+}
+
+impl<T: Real> Potential<T, 2> for Isometry<T> {
+    fn value(&self, x: &NodeVecs<T, 2>) -> T {
+        self.edge.value(x)
+    }
+    fn gradient(&self, x: &NodeVecs<T, 2>) -> NodeVecs<T, 2> {
+        self.edge.gradient(x)
+    }
+    fn hessian(&self, x: &NodeVecs<T, 2>) -> Blocks<T, 2> {
+        if self.projected {
+            self.edge.hessian_projected(x)
+        } else {
+            self.edge.hessian(x)
+        }
+    }
 }
 
 /// The grab's pull, seed `000_…` eq. 14 with a bounded force: the held node $x_i$ pulled

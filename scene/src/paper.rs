@@ -15,8 +15,8 @@
 //! ```
 //!
 //! The page is `page_width` wide and as tall as the book's aspect ratio makes it, so a
-//! scene's gestures (in page units) keep their place: only the page's weight against its
-//! stiffness (the sag number) and its thickness change. `"seed-card"` is the book's own
+//! scene's gestures (in page units) keep their place: only the page's stiffness against its
+//! weight (the sag number) and its thickness change. `"seed-card"` is the book's own
 //! page, the seed's weights as they are (a sag number of 0.24, a card of about 400 g/m²),
 //! which a scene that names no paper also gets.
 
@@ -198,7 +198,15 @@ mod tests {
                 (s.params.aspect_ratio / aspect - 1.0).abs() < 1e-12,
                 "{name}"
             );
-            assert_eq!(s.weights, seed.weights, "{name}");
+            // The page keeps its weight and every weight tuned to it; its bending is the
+            // paper's, under the projected isometry Hessian where it is softer than the
+            // exact one holds.
+            assert_eq!(s.page_mass, seed.page_mass, "{name}");
+            let others = |w: folio_book::Weights<f64>| [w.bend_blocks, w.glue, w.iso_page, w.pull];
+            assert_eq!(others(s.weights), others(seed.weights), "{name}");
+            let soft = s.weights.bend_page < folio_book::WEIGHT_RANGES[0].1;
+            let projected = s.isometry_hessian == folio_book::IsometryHessian::Projected;
+            assert_eq!(projected, soft, "{name}");
             assert_eq!(s.validate(), Ok(()), "{name}");
         }
     }
@@ -255,6 +263,18 @@ mod tests {
         let (_, _, message) = refused("paper = 3\n");
         assert!(
             message.contains("a paper's name (one of seed-card"),
+            "{message}"
+        );
+        let (line, _, message) = refused("paper = \"novel\"\n[book.weights]\nbend_page = 100.0\n");
+        assert_eq!(line, 6, "{message}");
+        assert!(
+            message.contains("the paper sets the page's bending"),
+            "{message}"
+        );
+        // The scene's own choice of Hessian stands; the exact one does not hold a novel page.
+        let (_, _, message) = refused("paper = \"novel\"\n[book]\nisometry_hessian = \"exact\"\n");
+        assert!(
+            message.contains("bend_page") && message.contains("[30, 200]"),
             "{message}"
         );
         let cone = crate::builtin::scene("cone-turn").unwrap().replacen(

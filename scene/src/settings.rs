@@ -311,13 +311,22 @@ fn book_in<T: Real + DeserializeOwned>(scene: &Scene) -> Result<BookSettings<T>,
         scene,
         "book",
     );
+    let set = |key: &str| scene.keys.span(&format!("book.{key}")).is_some();
     if let Some(paper) = paper(scene, s.params.aspect_ratio)? {
+        if let Some(at) = scene.keys.span("book.weights.bend_page") {
+            let message = "book.weights.bend_page: the paper sets the page's bending; \
+                           leave out one of the two";
+            return Err(SceneError::at(&scene.source, Some(at), message));
+        }
+        let asked = s.isometry_hessian;
         paper.apply(&mut s).map_err(|e| {
             let at = scene.paper.as_ref().map(Spanned::span);
             SceneError::at(&scene.source, at, e.to_string())
         })?;
+        if set("isometry_hessian") {
+            s.isometry_hessian = asked;
+        }
     }
-    let set = |key: &str| scene.keys.span(&format!("book.{key}")).is_some();
     if !set("params.left_pages") {
         s.params.left_pages = s.params.total_pages / 2;
     }

@@ -11,12 +11,9 @@
 //! and the largest edge stretch; `sweep` does so for 3 to 1000 pages, 0.001 to 0.05 thick.
 //! `MU` is `BookSettings::contact_friction` (default 0).
 
-use folio_book::{BlockSide, Book, BookSettings, GrabOutcome};
-use folio_kernels::{Real, Vec3Ops};
+use folio_book::{BlockSide, Book, BookSettings};
 use folio_pages::TouchScript;
-use folio_pages::touch::Touch;
-
-type V = <f64 as Real>::Vec3;
+use folio_tests::turn::turn_page;
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -67,41 +64,10 @@ fn turn(
     let mut book = Book::new(s).expect("book");
     let [w, h] = book.page_size();
     let script = TouchScript::page_turn(w, h, 10, held, frames);
-    let (mut origin, mut offset) = (V::ZERO, V::ZERO);
-    let mut max_stretch: f64 = 0.0;
-    let point = |p: [f64; 3]| V::new(p[0], p[1], p[2]);
-    for f in 0..frames {
-        match script.at(f) {
-            Touch::Grab { at, finger } => {
-                let GrabOutcome::Grabbed { node, .. } =
-                    book.grab_at(BlockSide::Right, at, 1).expect("grab")
-                else {
-                    return (None, None, 0.0);
-                };
-                let page = book.page().expect("a page");
-                let grid = book.nodes().grid;
-                let (c, e) = (page[0], page[grid.index(grid.nx - 1, 0)]);
-                origin = V::new(c.x(), e.y(), 0.0);
-                let sp = book.grid_spacing();
-                let (i, j) = grid.coords(node);
-                offset = V::new(i as f64 * sp[0] - at[0], 0.0, j as f64 * sp[1] - at[1]);
-                book.drag_to(point(finger) + offset + origin).expect("drag");
-            }
-            Touch::Drag(finger) => {
-                book.drag_to(point(finger) + offset + origin).expect("drag");
-            }
-            Touch::Release => {
-                book.release();
-            }
-            _ => {}
-        }
-        let r = book.step().expect("step");
-        if let Some((m, _)) = book.stretch() {
-            max_stretch = max_stretch.max(m);
-        }
-        if let Some(side) = r.merged {
-            return (Some(f - script.release_frame()), Some(side), max_stretch);
-        }
-    }
-    (None, None, max_stretch)
+    let turned = turn_page(&mut book, &script).expect("turn");
+    (
+        turned.merged.map(|(_, f)| f),
+        turned.merged.map(|(side, _)| side),
+        turned.max_stretch.0,
+    )
 }

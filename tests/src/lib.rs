@@ -13,6 +13,7 @@ pub mod fuzz;
 pub mod models;
 pub mod paths;
 pub mod terms;
+pub mod turn;
 
 use folio_kernels::real::{Mat3Ops, Vec3Ops};
 use folio_kernels::splitmix::SplitMix64;

@@ -8,7 +8,7 @@
 //! A case runs about 300 steps of the default 8 x 11 book (a fraction of a second in the
 //! test profile); the case counts keep each property under a minute.
 
-use folio_book::{Book, BookSettings, GrabOutcome, Phase, WEIGHT_RANGES, Weights};
+use folio_book::{Book, BookSettings, GrabOutcome, IsometryHessian, Phase, WEIGHT_RANGES, Weights};
 use folio_geometry::BlockSide;
 use glam::DVec3;
 use proptest::prelude::*;
@@ -195,10 +195,8 @@ proptest! {
 
 /// A case the property found on a run with a random seed (before the seed was fixed): a
 /// soft, weakly bent page (the first two weights near their lows) grabbed mid-page and pulled
-/// over the spine in 23 frames stretches 11.35 % at frame 20, past the 10 % bound.
-#[test]
-#[ignore = "measured 11.35 % stretch at frame 20 (bound 10 %); found 2026-11-27 by weights_across_their_ranges_stay_bounded, not fixed"]
-fn a_soft_page_pulled_over_the_spine_stays_bounded() {
+/// over the spine in 23 frames, on the book of `isometry`.
+fn soft_page_pulled_over_the_spine(isometry: IsometryHessian) -> Result<(), String> {
     let t = [
         0.037_100_856_537_563_05,
         0.305_522_472_707_318_47,
@@ -220,10 +218,29 @@ fn a_soft_page_pulled_over_the_spine_stays_bounded() {
     };
     let settings = BookSettings {
         weights: weights(t),
+        isometry_hessian: isometry,
         ..BookSettings::default()
     };
     let book = Book::new(settings).expect("book");
-    if let Err(e) = play(book, &[g]) {
+    play(book, &[g]).map_err(|e| e.to_string())
+}
+
+/// The case above under the seed's exact isometry Hessian: it stretched 11.35 % at frame 20
+/// when it was found (2026-11-27), past the 10 % bound; on 2026-12-07 it stays within the
+/// bound (1.9 % at most, measured; the commit that mended it was not traced), so it runs
+/// again.
+#[test]
+fn a_soft_page_pulled_over_the_spine_stays_bounded() {
+    if let Err(e) = soft_page_pulled_over_the_spine(IsometryHessian::Exact) {
+        panic!("{e}");
+    }
+}
+
+/// The same case under the projected isometry Hessian (`IsometryHessian::Projected`, the
+/// one a page of real paper takes) stays within the bound too (2.3 % at most, measured).
+#[test]
+fn a_soft_page_pulled_over_the_spine_stays_bounded_under_the_projected_hessian() {
+    if let Err(e) = soft_page_pulled_over_the_spine(IsometryHessian::Projected) {
         panic!("{e}");
     }
 }
