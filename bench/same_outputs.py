@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Checks that two builds of `folio` run every built-in scene the same.
 
-    python3 bench/same_outputs.py OLD_BIN NEW_BIN [SCENE ...]
+    python3 bench/same_outputs.py [--added KEY ...] OLD_BIN NEW_BIN [SCENE ...]
 
 Runs `folio run SCENE --out DIR` with both binaries (every built-in scene from `folio list`
 unless scenes are named) and compares their outputs: `report.json` with its timings left out
@@ -9,6 +9,8 @@ unless scenes are named) and compares their outputs: `report.json` with its timi
 output file byte for byte. Prints one line per scene and the first difference found; exits
 1 when any scene differs or a run fails in one build and not the other (a run's own exit
 status, 3 for a bad run, must be the same in both builds), 2 on bad arguments.
+`--added KEY` (repeatable) leaves the report key KEY out of the comparison at any depth: a
+field the change adds to `report.json`, whose other keys must still be the same.
 
 A change that is meant to keep the bits (a refactor, a leaner data structure) shows it with
 this: build the old commit in a worktree (`git worktree add --detach /tmp/old HEAD~1`,
@@ -22,10 +24,17 @@ import tempfile
 from pathlib import Path
 
 
+ADDED = set()
+
+
 def without_timings(value):
-    """`value` with every key ending in `_ms` removed, at any depth."""
+    """`value` with every key ending in `_ms`, and every key of `ADDED`, removed at any depth."""
     if isinstance(value, dict):
-        return {k: without_timings(v) for k, v in value.items() if not k.endswith("_ms") and "_ms_" not in k}
+        return {
+            k: without_timings(v)
+            for k, v in value.items()
+            if not k.endswith("_ms") and "_ms_" not in k and k not in ADDED
+        }
     if isinstance(value, list):
         return [without_timings(v) for v in value]
     return value
@@ -95,6 +104,9 @@ def compare(old, new, scene, work):
 
 def main():
     args = sys.argv[1:]
+    while len(args) >= 2 and args[0] == "--added":
+        ADDED.add(args[1])
+        args = args[2:]
     if len(args) < 2 or any(a in ("-h", "--help") for a in args):
         print(__doc__.strip())
         return 2

@@ -334,6 +334,16 @@ fn print_summary(report: &Report, out: &Path, seconds: f64) {
             "  work             at most {dofs} unknowns, {rows} rows, {terms} terms; {tests} collision tests"
         );
     }
+    if let Some(histogram) = &s.newton_iterations {
+        let cells: Vec<String> = histogram
+            .iter()
+            .map(|(n, frames)| format!("{n}: {frames}"))
+            .collect();
+        println!(
+            "  Newton           iterations per awake frame (iterations: frames) {}",
+            cells.join(", ")
+        );
+    }
     if let Some(asleep) = s.asleep_frames {
         println!("  asleep           {asleep} frames (no solver work: the book at rest, still)");
     }

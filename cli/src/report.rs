@@ -39,6 +39,8 @@ pub struct FrameRecord {
     pub terms: Option<usize>,
     /// Point-obstacle collision tests of the step (DOG book).
     pub contact_tests: Option<usize>,
+    /// Newton iterations (KKT systems solved) of the frame's steps (DOG book; 0 asleep).
+    pub newton_iterations: Option<u32>,
     /// A finger-bookmarking snapshot was taken (DOG book).
     pub snapshot: Option<bool>,
     /// The book slept through every step of the frame: no solver work (DOG book;
@@ -86,6 +88,7 @@ impl FrameRecord {
             constraint_rows: None,
             terms: None,
             contact_tests: None,
+            newton_iterations: None,
             snapshot: None,
             asleep: None,
             propagations: None,
@@ -153,6 +156,9 @@ pub struct Summary {
     pub status_counts: BTreeMap<String, usize>,
     /// What the model simulated.
     pub effects: Vec<String>,
+    /// How many awake frames took each number of Newton iterations (DOG book: the frames
+    /// the book did not sleep through, by their steps' iterations in all).
+    pub newton_iterations: Option<BTreeMap<u32, usize>>,
     /// Largest KKT system of a step: unknowns (DOG book).
     pub dofs_max: Option<usize>,
     /// Largest KKT system of a step: constraint rows (DOG book).

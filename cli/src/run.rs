@@ -149,10 +149,12 @@ fn frame_steps(frame: u32, h: Option<f64>) -> u32 {
     h.map_or(1, |h| clock::steps_in_frame(frame, h))
 }
 
-/// The collision tests, snapshots and sleep of the steps of a frame (DOG book).
+/// The collision tests, Newton iterations, snapshots and sleep of the steps of a frame (DOG
+/// book).
 #[derive(Default)]
 struct FrameWork {
     contact_tests: usize,
+    iterations: u32,
     snapshot: bool,
     /// Steps taken, and those the book slept through.
     steps: u32,
@@ -163,6 +165,7 @@ impl FrameWork {
     fn add<T: Real>(&mut self, report: Option<&BookStepReport<T>>) {
         if let Some(r) = report {
             self.contact_tests += r.contacts.tested;
+            self.iterations += r.solver.iterations;
             self.snapshot |= r.snapshot;
             self.steps += 1;
             self.asleep += u32::from(r.asleep);
@@ -173,6 +176,7 @@ impl FrameWork {
     fn total(&self, record: FrameRecord) -> FrameRecord {
         FrameRecord {
             contact_tests: record.contact_tests.map(|_| self.contact_tests),
+            newton_iterations: record.newton_iterations.map(|_| self.iterations),
             snapshot: record.snapshot.map(|_| self.snapshot),
             asleep: record
                 .asleep
@@ -385,6 +389,7 @@ fn book_record<T: Real>(
             constraint_rows: Some(r.constraint_rows),
             terms: Some(r.census.potentials + r.census.constraints),
             contact_tests: Some(r.contacts.tested),
+            newton_iterations: Some(r.solver.iterations),
             snapshot: Some(r.snapshot),
             asleep: Some(r.asleep),
             ..record.solver(r.solver.status)

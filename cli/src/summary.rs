@@ -74,6 +74,7 @@ pub(crate) fn summarize(
         unmet: Vec::new(),
         status_counts,
         effects,
+        newton_iterations: iteration_histogram(records),
         dofs_max: records.iter().filter_map(|r| r.dofs).max(),
         constraint_rows_max: records.iter().filter_map(|r| r.constraint_rows).max(),
         terms_max: records.iter().filter_map(|r| r.terms).max(),
@@ -87,6 +88,22 @@ pub(crate) fn summarize(
         tear_lengths: None,
         tear_start: None,
     }
+}
+
+/// How many awake frames of `records` took each number of Newton iterations (DOG book);
+/// `None` for other models.
+fn iteration_histogram(records: &[FrameRecord]) -> Option<BTreeMap<u32, usize>> {
+    let mut histogram = BTreeMap::new();
+    let mut any = false;
+    for r in records {
+        if let Some(n) = r.newton_iterations {
+            any = true;
+            if r.asleep != Some(true) {
+                *histogram.entry(n).or_insert(0) += 1;
+            }
+        }
+    }
+    any.then_some(histogram)
 }
 
 impl Report {

@@ -573,6 +573,21 @@ fn a_scene_on_card_reports_its_paper() {
             get(key)
         );
     }
+    // The Newton iterations: every awake frame counted once, at most the book's one
+    // iteration per step (one step per frame at the default time step).
+    let summary = &report["summary"];
+    let histogram = summary["newton_iterations"]
+        .as_object()
+        .expect("a histogram");
+    let awake: u64 = histogram.values().map(|v| v.as_u64().unwrap()).sum();
+    let frames = summary["frames"].as_u64().unwrap();
+    let asleep = summary["asleep_frames"].as_u64().unwrap();
+    assert_eq!(awake, frames - asleep, "{histogram:?}");
+    assert!(
+        histogram.keys().all(|k| k == "1" || k == "0"),
+        "{histogram:?}"
+    );
+    assert!(text(&out.stdout).contains("  Newton           iterations per awake frame"));
     // The seed's card (and a scene without a paper) has no physical size to report.
     let seed = dir.join("seed.toml");
     let scene =
