@@ -20,8 +20,9 @@
 //! novel page given its sag number by a 46 times heavier page mass, those weights kept,
 //! could not be lifted off its block; with them scaled by the same 46 it turned). So it sets
 //! the bending weight that gives the book's page the paper's $\alpha$, and the thickness
-//! and the aspect ratio, and it asks for the projected isometry Hessian
-//! ([`crate::IsometryHessian`]), which a page that soft needs. A book of page units
+//! and the aspect ratio, and, for a page softer than the exact isometry Hessian holds
+//! (`bend_page` below 30, every book paper), it asks for the projected one
+//! ([`crate::IsometryHessian`]). A book of page units
 //! $\ell = L/W_{pu}$ (m) and gravity $g_b$ then runs its seconds at
 //! $\tau = \sqrt{g_b\thinspace\ell / g}$ real seconds ([`BookUnits`]): the book shows a
 //! real page's shapes at a $1/\tau$ slower pace (the default book of an A5 page:
@@ -158,8 +159,8 @@ impl Paper {
     /// thickness $t/\ell$ in page units, the bending weight that makes the book's sag number
     /// $\rho_b g_b W_{pu}^3 / D_b$ this paper's $\alpha$, with $D_b = 2 w_{\mathrm{bend3D}}$
     /// and $\rho_b$ the page mass over the page's area in page units, and the projected
-    /// isometry Hessian. The page width, the gravity, the page mass and every other weight
-    /// stay.
+    /// isometry Hessian when that weight is below the exact Hessian's range (30). The page
+    /// width, the gravity, the page mass and every other weight stay.
     ///
     /// # Errors
     /// As [`Paper::validate`]; [`BookError::InvalidSetting`] for settings whose page width,
