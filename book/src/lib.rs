@@ -36,6 +36,7 @@ pub mod error;
 mod flip;
 pub mod friction;
 mod grab;
+pub mod gutter;
 pub mod interaction;
 pub mod layout;
 mod merge;

@@ -16,6 +16,8 @@
 //! - [`step`]: [`Solver::step`], one time step with a [`StepReport`].
 //! - [`matrix_market`]: export of the assembled KKT matrix.
 //! - [`ring`]: [`Ring`], a fixed-capacity history of states (the models' recordings).
+//! - [`banded`]: [`banded::Banded`], a banded SPD matrix and its Cholesky factor, for the
+//!   Newton systems of curves.
 //!
 //! It holds no model: anything that implements [`Model`] can be stepped, and the KKT
 //! machinery ([`pattern`], [`symbolic`], [`ldlt`], [`kkt`]) is usable on its own for any
@@ -30,6 +32,7 @@
 extern crate alloc;
 
 mod assembly;
+pub mod banded;
 #[cfg(test)]
 mod chain;
 pub mod error;

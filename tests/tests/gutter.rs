@@ -1,0 +1,208 @@
+//! The heavy elastica over a ground ([`folio_book::gutter`]), the block's top page of issue
+//! 42's gutter, checked three ways:
+//! - **against an independent reference:** clamped horizontally in air, it is the
+//!   cantilever elastica that [`folio_tests::elastica::cantilever`] solves by shooting
+//!   (Runge–Kutta on $\theta$, not nodes), to second order in the segment length;
+//! - **against the small-slope theory:** a strip pinned a little above a flat ground lifts
+//!   off it over $\ell = (24 B d/q)^{1/4}$ with a root slope $2d/\ell$ (the beam
+//!   $B w'''' = -q$ with $w = d$, $w'' = 0$ at the pin and $w = w' = w'' = 0$ at touchdown);
+//! - **against itself refined (Richardson):** a block's top page over the default book's
+//!   settled block, for every built-in paper, at 200 segments within $10^{-4}$ of the page
+//!   width of the page extrapolated from 800 and 1600 segments.
+
+use folio_book::gutter::{Air, Band, Elastica, Ground, Root, Settled};
+use folio_book::{BlockSide, Book, BookSettings, Stock};
+use folio_kernels::Vec3Ops;
+use folio_tests::elastica::cantilever;
+
+/// A5, the width the built-in stocks' sag numbers are quoted on (m).
+const A5_WIDTH: f64 = 0.148;
+
+/// The strip's nodes on a straight line from its root at `angle`.
+fn straight(e: &Elastica, angle: f64) -> Vec<[f64; 2]> {
+    let h = e.length / e.segments as f64;
+    (0..=e.segments)
+        .map(|k| {
+            let s = k as f64 * h;
+            [e.root[0] + s * angle.cos(), e.root[1] + s * angle.sin()]
+        })
+        .collect()
+}
+
+/// The clamped strip's tip deflection over its length at `segments`.
+fn tip_deflection(alpha: f64, segments: usize) -> f64 {
+    let e = Elastica {
+        root: [0.0, 0.0],
+        held: Root::Clamped { angle: 0.0 },
+        length: 12.0,
+        sag: alpha,
+        segments,
+    };
+    let s = e
+        .settle(&Air, &straight(&e, 0.0))
+        .expect("a hanging strip settles");
+    assert!(s.strain < 1e-6, "{s:?}");
+    -s.points[segments][1] / e.length
+}
+
+#[test]
+fn a_clamped_strip_sags_like_the_shooting_reference_to_second_order() {
+    for alpha in [0.5, 5.0, 11.0, 55.0] {
+        let reference = cantilever(alpha, 2000).tip_deflection;
+        let errors: Vec<f64> = [200, 400, 800]
+            .iter()
+            .map(|&n| (tip_deflection(alpha, n) - reference).abs())
+            .collect();
+        // Measured 1.6e-6 (alpha 0.5) to 2.7e-5 (alpha 55) at 200 segments.
+        assert!(errors[0] < 5e-5, "alpha {alpha}: {errors:?}");
+        for w in errors.windows(2) {
+            let order = (w[0] / w[1]).log2();
+            assert!((1.8..2.2).contains(&order), "alpha {alpha}: {errors:?}");
+        }
+    }
+}
+
+/// The ground $y \le 0$: a band of half width 1 around $y = -1$.
+const FLOOR: [[f64; 2]; 2] = [[-1.0e3, -1.0], [1.0e3, -1.0]];
+
+#[test]
+fn a_strip_pinned_over_a_floor_lifts_off_as_the_beam_theory_says() {
+    let floor = Band {
+        line: &FLOOR,
+        clearance: 1.0,
+        open_start: false,
+    };
+    let (length, alpha, lift) = (12.0, 55.0, 0.05);
+    let e = Elastica {
+        root: [0.0, lift],
+        held: Root::Pinned,
+        length,
+        sag: alpha,
+        segments: 800,
+    };
+    let s = e.settle(&floor, &straight(&e, 0.0)).expect("it settles");
+    // q/B = alpha/L^3; the lifted span and the root slope of the small-slope beam.
+    let span = (24.0 * lift * length.powi(3) / alpha).powf(0.25);
+    let slope = 2.0 * lift / span;
+    let root_slope = -(s.points[1][1] - s.points[0][1]) / (s.points[1][0] - s.points[0][0]);
+    // The slope is about 0.04: the theory's neglected terms are a few parts in 1e3, and
+    // the first segment's slope is the tangent's half a segment out.
+    assert!(
+        (root_slope / slope - 1.0).abs() < 0.02,
+        "root slope {root_slope}, theory {slope} (span {span})"
+    );
+    // Beyond the span it lies on the floor; before it, it is off it.
+    let on_floor = |p: [f64; 2]| floor.signed_distance(p).0 < 1e-7;
+    let h = length / 800.0;
+    let first = (1..=800)
+        .find(|&k| on_floor(s.points[k]))
+        .expect("it touches");
+    let touchdown = first as f64 * h;
+    assert!(
+        (touchdown / span - 1.0).abs() < 0.1,
+        "touchdown {touchdown}, theory {span}"
+    );
+    assert!(s.points[first..].iter().all(|&p| on_floor(p)));
+    assert!(s.penetration < 1e-9 * length, "{s:?}");
+}
+
+/// The default book, settled, and its block on `side` as a ground cut square at the
+/// binding, with the hinge its top page is rooted at.
+fn default_block(side: BlockSide) -> (Vec<[f64; 2]>, f64, [f64; 2]) {
+    let book: Book<f64> = Book::new(BookSettings::default()).expect("the default book");
+    let line: Vec<[f64; 2]> = book.midline(side).iter().map(|p| [p.x(), p.y()]).collect();
+    let (b1, b2) = (
+        book.midline(BlockSide::Left)[0],
+        book.midline(BlockSide::Right)[0],
+    );
+    let layout = book.layout();
+    let q = layout.binding_parameter(layout.params.left_pages, 0);
+    let hinge = [
+        b1.x() + q * (b2.x() - b1.x()),
+        b1.y() + q * (b2.y() - b1.y()),
+    ];
+    (line, book.block_thickness(side), hinge)
+}
+
+/// The top page of the default book's block on `side` for `stock`, at `segments`.
+fn top_page(side: BlockSide, stock: Stock, segments: usize) -> Settled {
+    let (line, thickness, hinge) = default_block(side);
+    let band = Band {
+        line: &line,
+        clearance: thickness,
+        open_start: true,
+    };
+    let e = Elastica {
+        root: hinge,
+        held: Root::Pinned,
+        length: 12.0,
+        sag: stock.cut(A5_WIDTH, 0.210).sag_number(),
+        segments,
+    };
+    let start = e.arched(&band, side).expect("an arch clears the block");
+    let s = e.settle(&band, &start).expect("the top page settles");
+    assert!(s.penetration < 1e-8 * e.length, "{s:?}");
+    assert!(s.strain < 1e-6, "{s:?}");
+    s
+}
+
+#[test]
+fn a_blocks_top_page_at_200_segments_is_within_1e_4_of_the_width_of_its_richardson_limit() {
+    for (name, stock) in Stock::BUILT_IN {
+        let runs: Vec<Settled> = [200, 800, 1600]
+            .iter()
+            .map(|&n| top_page(BlockSide::Right, stock, n))
+            .collect();
+        // The nodes of the 200-segment page sit at every 4th and 8th node of the others.
+        let (mut error, mut spread) = (0.0f64, 0.0f64);
+        for k in 0..=200 {
+            let (coarse, fine, finest) = (
+                runs[0].points[k],
+                runs[1].points[4 * k],
+                runs[2].points[8 * k],
+            );
+            for axis in 0..2 {
+                let limit = finest[axis] + (finest[axis] - fine[axis]) / 3.0;
+                error = error.max((coarse[axis] - limit).abs());
+                spread = spread.max((fine[axis] - finest[axis]).abs());
+            }
+        }
+        println!(
+            "{name}: 200 segments within {error:.2e} of the limit, 800 to 1600 {spread:.2e} (page units; W = 12)"
+        );
+        assert!(error < 1e-4 * 12.0, "{name}: {error}");
+        assert!(spread < error.max(1e-6), "{name}: {spread} {error}");
+    }
+}
+
+#[test]
+fn the_left_blocks_top_page_is_the_right_ones_mirror_image() {
+    let (right, left) = (
+        top_page(BlockSide::Right, Stock::NOVEL, 200),
+        top_page(BlockSide::Left, Stock::NOVEL, 200),
+    );
+    let (_, _, hinge) = default_block(BlockSide::Right);
+    for (r, l) in right.points.iter().zip(&left.points) {
+        assert!(
+            (r[0] - hinge[0] + (l[0] - hinge[0])).abs() < 1e-7,
+            "{r:?} {l:?}"
+        );
+        assert!((r[1] - l[1]).abs() < 1e-7, "{r:?} {l:?}");
+    }
+}
+
+#[test]
+fn heavier_paper_lies_lower_in_the_gutter() {
+    // The chord from the hinge to the point a quarter of the page out, in degrees.
+    let chord = |stock: Stock| {
+        let s = top_page(BlockSide::Right, stock, 200);
+        let (a, b) = (s.points[0], s.at(3.0, 12.0));
+        (b[1] - a[1]).atan2(b[0] - a[0]).to_degrees()
+    };
+    let angles: Vec<f64> = [Stock::CARD, Stock::NOVEL, Stock::MAGAZINE, Stock::BIBLE]
+        .into_iter()
+        .map(chord)
+        .collect();
+    println!("chord to W/4, card, novel, magazine, bible: {angles:?}");
+    assert!(angles.windows(2).all(|w| w[0] > w[1]), "{angles:?}");
+}
