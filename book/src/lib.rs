@@ -15,6 +15,8 @@
 //! - [`simulation`]: [`Book`], a frame = one implicit step plus collisions and the
 //!   constraint projection; grab by ray, drag through the tent, release and merge
 //!   ([`interaction`]), finger-bookmarking ([`bookmark`], feature `bookmarking`).
+//! - [`gutter`]: a block's top page as a heavy elastica over its block ([`gutter::Elastica`]),
+//!   the gutter as paper lies and the 1D reference of a page at rest (issue 42).
 //! - [`mesh`]: the whole book as one render mesh (Sec. 3.5) from `folio_geometry::mesh`.
 //! - [`script`]: recorded input ([`Script`]) for fixtures and replays.
 //!
