@@ -13,12 +13,12 @@
 //! 62.8° (card), 40.5° (novel), 39.5° (magazine) and 27.2° (bible), at 200 segments
 //! (`folio-tests`' `gutter.rs`, which prints them).
 //!
-//! - [`ground`]: what the strip lies on ([`Ground`]): nothing ([`Air`]) or a block
-//!   ([`Band`]).
+//! - [`ground`]: what the strip lies on ([`Ground`]): nothing ([`Air`]), a block
+//!   ([`Band`]), a table ([`Level`]), or two of them ([`Both`]).
 //! - [`elastica`]: the strip and its rest ([`Elastica::settle`]).
 
 pub mod elastica;
 pub mod ground;
 
 pub use elastica::{Elastica, ElasticaError, Root, Settled};
-pub use ground::{Air, Band, Ground, Point2};
+pub use ground::{Air, Band, Both, Ground, Level, Point2};

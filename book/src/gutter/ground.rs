@@ -12,6 +12,16 @@ pub trait Ground {
     /// gradient, the unit normal that points out of the ground.
     fn signed_distance(&self, p: Point2) -> (f64, Point2);
 
+    /// Calls `f(d, n)` for each face of the ground that `p` is inside (signed distance
+    /// $d < 0$ from it, outward normal $n$), or once with [`Ground::signed_distance`] when
+    /// it is inside none. A point in a concave crease is inside two faces: a strip's node
+    /// resting there is held by both, where the signed distance alone gives the nearer one
+    /// and its normal jumps as the node moves. By default the signed distance alone.
+    fn for_each_face(&self, p: Point2, f: &mut dyn FnMut(f64, Point2)) {
+        let (d, n) = self.signed_distance(p);
+        f(d, n);
+    }
+
     /// Calls `f(q, n)` for each sharp convex corner $q$ of the ground, with $n$ its outward
     /// direction: a strip's nodes may straddle a sharp corner, so its segments are tested
     /// against each corner as well ([`super::Elastica::settle`]). None by default.
@@ -27,6 +37,53 @@ pub struct Air;
 impl Ground for Air {
     fn signed_distance(&self, _p: Point2) -> (f64, Point2) {
         (f64::INFINITY, [0.0, 1.0])
+    }
+}
+
+/// Everything below a level: a table or a cover board under a block ([`Both`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Level {
+    /// The surface's height (page units).
+    pub y: f64,
+}
+
+impl Ground for Level {
+    fn signed_distance(&self, p: Point2) -> (f64, Point2) {
+        (p[1] - self.y, [0.0, 1.0])
+    }
+}
+
+/// Two grounds together: a point is inside when it is inside either. A block with the
+/// table or cover under it: a strip's nodes, a segment apart, can pass through a band
+/// thinner than a segment (a block of a few pages) but not through what it lies on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Both<A, B>(pub A, pub B);
+
+impl<A: Ground, B: Ground> Ground for Both<A, B> {
+    fn signed_distance(&self, p: Point2) -> (f64, Point2) {
+        let (a, b) = (self.0.signed_distance(p), self.1.signed_distance(p));
+        if b.0 < a.0 { b } else { a }
+    }
+
+    fn for_each_face(&self, p: Point2, f: &mut dyn FnMut(f64, Point2)) {
+        let (a, b) = (self.0.signed_distance(p), self.1.signed_distance(p));
+        match (a.0 < 0.0, b.0 < 0.0) {
+            (false, false) => f(
+                if b.0 < a.0 { b.0 } else { a.0 },
+                if b.0 < a.0 { b.1 } else { a.1 },
+            ),
+            (true, false) => self.0.for_each_face(p, f),
+            (false, true) => self.1.for_each_face(p, f),
+            (true, true) => {
+                self.0.for_each_face(p, f);
+                self.1.for_each_face(p, f);
+            }
+        }
+    }
+
+    fn for_each_corner(&self, f: &mut dyn FnMut(Point2, Point2)) {
+        self.0.for_each_corner(f);
+        self.1.for_each_corner(f);
     }
 }
 
@@ -53,6 +110,33 @@ pub struct Band<'a> {
 }
 
 impl Band<'_> {
+    /// The signed distance from piece `i` of the band (segment `i` with its rounded ends,
+    /// or cut square at the start, [`Band::square_start`]) and its outward normal; `None`
+    /// for a degenerate first segment cut square.
+    fn piece(&self, i: usize, p: Point2) -> Option<(f64, Point2)> {
+        let (a, b) = (self.line[i], self.line[i + 1]);
+        if i == 0 && self.open_start {
+            return self.square_start(a, b, p);
+        }
+        let d = [b[0] - a[0], b[1] - a[1]];
+        let len2 = d[0] * d[0] + d[1] * d[1];
+        let t = if len2 > 0.0 {
+            (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let r = [p[0] - a[0] - t * d[0], p[1] - a[1] - t * d[1]];
+        let dist = math::sqrt(r[0] * r[0] + r[1] * r[1]);
+        // On the polyline itself the direction is the segment's left normal.
+        let normal = if dist > 0.0 {
+            [r[0] / dist, r[1] / dist]
+        } else {
+            let len = math::sqrt(len2).max(f64::MIN_POSITIVE);
+            [-d[1] / len, d[0] / len]
+        };
+        Some((dist - self.clearance, normal))
+    }
+
     /// The signed distance from the first segment's piece cut square at its start
     /// (`a` to `b`): along $u$ and across $v$ in the segment's frame, behind the cut
     /// ($u < 0$) the distance to the cut's face, inside the nearer of the face and the
@@ -120,43 +204,34 @@ impl Ground for Band<'_> {
 
     fn signed_distance(&self, p: Point2) -> (f64, Point2) {
         let mut best = (f64::INFINITY, [0.0, 1.0]);
-        for (i, w) in self.line.windows(2).enumerate() {
-            let (a, b) = (w[0], w[1]);
-            if i == 0 && self.open_start {
-                if let Some(piece) = self.square_start(a, b, p) {
-                    if piece.0 < best.0 {
-                        best = piece;
-                    }
+        for i in 0..self.line.len().saturating_sub(1) {
+            if let Some(piece) = self.piece(i, p) {
+                if piece.0 < best.0 {
+                    best = piece;
                 }
-                continue;
-            }
-            let d = [b[0] - a[0], b[1] - a[1]];
-            let len2 = d[0] * d[0] + d[1] * d[1];
-            let t = if len2 > 0.0 {
-                (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            let r = [p[0] - a[0] - t * d[0], p[1] - a[1] - t * d[1]];
-            let dist = math::sqrt(r[0] * r[0] + r[1] * r[1]);
-            if dist - self.clearance < best.0 {
-                // On the polyline itself the direction is the segment's left normal.
-                let normal = if dist > 0.0 {
-                    [r[0] / dist, r[1] / dist]
-                } else {
-                    let len = math::sqrt(len2).max(f64::MIN_POSITIVE);
-                    [-d[1] / len, d[0] / len]
-                };
-                best = (dist - self.clearance, normal);
             }
         }
         best
+    }
+
+    fn for_each_face(&self, p: Point2, f: &mut dyn FnMut(f64, Point2)) {
+        let mut inside = false;
+        for i in 0..self.line.len().saturating_sub(1) {
+            if let Some((d, n)) = self.piece(i, p).filter(|piece| piece.0 < 0.0) {
+                inside = true;
+                f(d, n);
+            }
+        }
+        if !inside {
+            let (d, n) = self.signed_distance(p);
+            f(d, n);
+        }
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{Band, Ground};
+    use super::{Band, Both, Ground, Level};
     use alloc::vec::Vec;
 
     /// The band of half width 1 around the segment (0, 0)-(10, 0).
@@ -207,5 +282,38 @@ mod tests {
         assert_eq!(corners.len(), 2);
         assert!(corners.iter().any(|(q, _)| *q == [0.0, 1.0]));
         slab(false).for_each_corner(&mut |_, _| panic!("no sharp corner"));
+    }
+
+    #[test]
+    fn a_point_in_a_crease_or_in_two_grounds_has_a_face_in_each() {
+        // The band around (0, 0)-(10, 0) on the level y = -0.5: a point inside both.
+        let both = Both(slab(false), Level { y: -0.5 });
+        let mut faces = Vec::new();
+        both.for_each_face([5.0, -0.75], &mut |d, n| faces.push((d, n)));
+        assert_eq!(faces.len(), 2, "{faces:?}");
+        assert!(
+            faces
+                .iter()
+                .any(|&(d, n)| (d + 0.25).abs() < 1e-12 && n == [0.0, 1.0])
+        );
+        assert!(
+            faces
+                .iter()
+                .any(|&(d, n)| (d + 0.25).abs() < 1e-12 && n == [0.0, -1.0])
+        );
+        // Outside both: the nearer one only.
+        let mut faces = Vec::new();
+        both.for_each_face([5.0, 3.0], &mut |d, n| faces.push((d, n)));
+        assert_eq!(faces, [(2.0, [0.0, 1.0])]);
+        // In the crease of a band that turns up: inside both pieces, each with its normal.
+        const V: [[f64; 2]; 3] = [[-10.0, 0.0], [0.0, 0.0], [10.0, 10.0]];
+        let crease = Band {
+            line: &V,
+            clearance: 1.0,
+            open_start: false,
+        };
+        let mut faces = Vec::new();
+        crease.for_each_face([0.0, 0.9], &mut |d, n| faces.push((d, n)));
+        assert_eq!(faces.len(), 2, "{faces:?}");
     }
 }
