@@ -356,6 +356,18 @@ impl<T: Real> BookSettings<T> {
         };
     }
 
+    /// The page's sag number $\alpha = \rho g W^3 / D$ ([`crate::paper`]) from the book's own
+    /// figures: $\rho$ the page mass over its area, $g$ the gravity, $W$ the page width and
+    /// $D = 2 w_{\mathrm{bend3D}}$ ([`crate::quadrature::bending_stiffness`]). The seed's
+    /// weights give 0.24; [`crate::Paper::apply`] sets a paper's.
+    #[must_use]
+    pub fn sag_number(&self) -> f64 {
+        let p = &self.params;
+        let density = self.page_mass.to_f64() / (p.page_width * p.page_height());
+        let d = crate::quadrature::bending_stiffness(self.weights.bend_page.to_f64());
+        density * self.gravity.to_f64() * p.page_width * p.page_width * p.page_width / d
+    }
+
     /// The reference cell area: the seed's weights hold for an 8x11 grid on the default page.
     fn reference_cell_area(&self) -> f64 {
         let p = &self.params;

@@ -166,13 +166,9 @@ mod tests {
         (e.line, e.column, e.message)
     }
 
-    /// The sag number of the book's own page, from the book's figures alone: the page
-    /// mass over its area, the gravity, the width and D = 2 w_bend3D.
+    /// The sag number of the book's own page ([`BookSettings::sag_number`]).
     fn sag_number(s: &BookSettings<f64>) -> f64 {
-        let p = s.params;
-        let rho = s.page_mass / (p.page_width * p.page_height());
-        let d = folio_book::quadrature::bending_stiffness(s.weights.bend_page);
-        rho * s.gravity * p.page_width.powi(3) / d
+        s.sag_number()
     }
 
     #[test]

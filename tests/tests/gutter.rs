@@ -10,9 +10,10 @@
 //!   settled block, for every built-in paper, at 200 segments within $10^{-4}$ of the page
 //!   width of the page extrapolated from 800 and 1600 segments.
 
-use folio_book::gutter::{Air, Band, Both, Elastica, ElasticaError, Ground, Level, Root, Settled};
+use folio_book::gutter::{
+    self, Air, Band, Both, Elastica, ElasticaError, Ground, Level, Root, Settled,
+};
 use folio_book::{BlockSide, Book, BookSettings, Stock};
-use folio_kernels::Vec3Ops;
 use folio_tests::elastica::cantilever;
 
 /// A5, the width the built-in stocks' sag numbers are quoted on (m).
@@ -106,42 +107,23 @@ fn a_strip_pinned_over_a_floor_lifts_off_as_the_beam_theory_says() {
     assert!(s.penetration < 1e-9 * length, "{s:?}");
 }
 
-/// The default book, settled, and its block on `side` as a ground cut square at the
-/// binding, with the hinge its top page is rooted at.
-fn default_block(side: BlockSide) -> (Vec<[f64; 2]>, f64, [f64; 2]) {
-    let book: Book<f64> = Book::new(BookSettings::default()).expect("the default book");
-    let line: Vec<[f64; 2]> = book.midline(side).iter().map(|p| [p.x(), p.y()]).collect();
-    let (b1, b2) = (
-        book.midline(BlockSide::Left)[0],
-        book.midline(BlockSide::Right)[0],
-    );
-    let layout = book.layout();
-    let q = layout.binding_parameter(layout.params.left_pages, 0);
-    let hinge = [
-        b1.x() + q * (b2.x() - b1.x()),
-        b1.y() + q * (b2.y() - b1.y()),
-    ];
-    (line, book.block_thickness(side), hinge)
+/// The default book on `stock` cut to A5 ([`folio_book::Paper::apply`]: its sag number and
+/// page thickness), settled.
+fn book_on(stock: Stock) -> Book<f64> {
+    let mut settings = BookSettings::default();
+    let aspect = settings.params.aspect_ratio;
+    stock
+        .cut(A5_WIDTH, A5_WIDTH * aspect)
+        .apply(&mut settings)
+        .expect("a built-in paper");
+    Book::new(settings).expect("the book")
 }
 
-/// The top page of the default book's block on `side` for `stock`, at `segments`.
+/// The top page of the block on `side` of the default book on `stock`, at `segments`.
 fn top_page(side: BlockSide, stock: Stock, segments: usize) -> Settled {
-    let (line, thickness, hinge) = default_block(side);
-    let band = Band {
-        line: &line,
-        clearance: thickness,
-        open_start: true,
-    };
-    let e = Elastica {
-        root: hinge,
-        held: Root::Pinned,
-        length: 12.0,
-        sag: stock.cut(A5_WIDTH, 0.210).sag_number(),
-        segments,
-    };
-    let start = e.arched(&band, side).expect("an arch clears the block");
-    let s = e.settle(&band, &start).expect("the top page settles");
-    assert!(s.penetration < 1e-8 * e.length, "{s:?}");
+    let book = book_on(stock);
+    let s = gutter::top_page(&book, side, segments).expect("the top page settles");
+    assert!(s.penetration < 1e-8 * 12.0, "{s:?}");
     assert!(s.strain < 1e-6, "{s:?}");
     s
 }
@@ -181,7 +163,8 @@ fn the_left_blocks_top_page_is_the_right_ones_mirror_image() {
         top_page(BlockSide::Right, Stock::NOVEL, 200),
         top_page(BlockSide::Left, Stock::NOVEL, 200),
     );
-    let (_, _, hinge) = default_block(BlockSide::Right);
+    let hinge = right.points[0];
+    assert!((hinge[0] - left.points[0][0]).abs() < 1e-12, "one hinge");
     for (r, l) in right.points.iter().zip(&left.points) {
         assert!(
             (r[0] - hinge[0] + (l[0] - hinge[0])).abs() < 1e-7,
@@ -194,16 +177,22 @@ fn the_left_blocks_top_page_is_the_right_ones_mirror_image() {
 #[test]
 fn heavier_paper_lies_lower_in_the_gutter() {
     // The chord from the hinge to the point a quarter of the page out, in degrees.
-    let chord = |stock: Stock| {
-        let s = top_page(BlockSide::Right, stock, 200);
+    let chord = |s: Settled| {
         let (a, b) = (s.points[0], s.at(3.0, 12.0));
         (b[1] - a[1]).atan2(b[0] - a[0]).to_degrees()
     };
-    let angles: Vec<f64> = [Stock::CARD, Stock::NOVEL, Stock::MAGAZINE, Stock::BIBLE]
-        .into_iter()
-        .map(chord)
-        .collect();
-    println!("chord to W/4, card, novel, magazine, bible: {angles:?}");
+    let seed: Book<f64> = Book::new(BookSettings::default()).expect("the default book");
+    let mut angles = vec![chord(
+        gutter::top_page(&seed, BlockSide::Right, gutter::TOP_PAGE_SEGMENTS).expect("it settles"),
+    )];
+    for stock in [Stock::CARD, Stock::NOVEL, Stock::MAGAZINE, Stock::BIBLE] {
+        angles.push(chord(top_page(
+            BlockSide::Right,
+            stock,
+            gutter::TOP_PAGE_SEGMENTS,
+        )));
+    }
+    println!("chord to W/4, the seed's card, card, novel, magazine, bible: {angles:?}");
     assert!(angles.windows(2).all(|w| w[0] > w[1]), "{angles:?}");
 }
 
