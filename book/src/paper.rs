@@ -184,7 +184,7 @@ impl Paper {
         settings.params.aspect_ratio = aspect;
         settings.params.page_thickness = self.thickness * width / self.width;
         settings.weights.bend_page = T::from_f64(bend_page);
-        if bend_page < crate::WEIGHT_RANGES[0].1 {
+        if crate::IsometryHessian::for_bend_page(bend_page) == crate::IsometryHessian::Projected {
             settings.isometry_hessian = crate::IsometryHessian::Projected;
         }
         Ok(())
@@ -256,7 +256,8 @@ mod tests {
             );
             assert!((p.page_height() / p.page_width - 0.23 / 0.15).abs() < 1e-12);
             assert!((p.page_thickness / p.page_width - t / 0.15).abs() < 1e-15);
-            let soft = s.weights.bend_page < crate::WEIGHT_RANGES[0].1;
+            let soft = crate::IsometryHessian::for_bend_page(s.weights.bend_page)
+                == crate::IsometryHessian::Projected;
             let projected = s.isometry_hessian == crate::IsometryHessian::Projected;
             assert_eq!(projected, soft, "{grammage}");
             assert_eq!(s.page_mass, 1.0, "the page mass stays");

@@ -122,6 +122,21 @@ pub enum IsometryHessian {
     Projected,
 }
 
+impl IsometryHessian {
+    /// The Hessian that holds a page of bending weight `bend_page`:
+    /// [`IsometryHessian::Projected`] below the exact Hessian's range ([`WEIGHT_RANGES`],
+    /// from 30), where a soft page makes the exact one indefinite, else
+    /// [`IsometryHessian::Exact`]. [`crate::Paper::apply`] sets it.
+    #[must_use]
+    pub fn for_bend_page(bend_page: f64) -> Self {
+        if bend_page < WEIGHT_RANGES[0].1 {
+            Self::Projected
+        } else {
+            Self::Exact
+        }
+    }
+}
+
 /// Everything that defines a simulated book.
 #[cfg_attr(
     feature = "serde",

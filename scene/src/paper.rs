@@ -200,7 +200,8 @@ mod tests {
             assert_eq!(s.page_mass, seed.page_mass, "{name}");
             let others = |w: folio_book::Weights<f64>| [w.bend_blocks, w.glue, w.iso_page, w.pull];
             assert_eq!(others(s.weights), others(seed.weights), "{name}");
-            let soft = s.weights.bend_page < folio_book::WEIGHT_RANGES[0].1;
+            let soft = folio_book::IsometryHessian::for_bend_page(s.weights.bend_page)
+                == folio_book::IsometryHessian::Projected;
             let projected = s.isometry_hessian == folio_book::IsometryHessian::Projected;
             assert_eq!(projected, soft, "{name}");
             assert_eq!(s.validate(), Ok(()), "{name}");

@@ -55,7 +55,8 @@ fn every_built_in_paper_turns() {
             .cut(A5_WIDTH, A5_WIDTH * aspect)
             .apply(&mut s)
             .expect(name);
-        let soft = s.weights.bend_page < folio_book::WEIGHT_RANGES[0].1;
+        let soft =
+            IsometryHessian::for_bend_page(s.weights.bend_page) == IsometryHessian::Projected;
         assert_eq!(
             s.isometry_hessian == IsometryHessian::Projected,
             soft,
