@@ -36,7 +36,8 @@ pub const TOP_PAGE_SEGMENTS: usize = 200;
 ///
 /// # Errors
 /// [`ElasticaError::InvalidSetting`] for fewer than 2 segments or a book whose figures are
-/// not finite; [`ElasticaError::NotSettled`] when the page finds no rest.
+/// not finite; [`ElasticaError::NoStart`] when no arch from the root clears the block;
+/// [`ElasticaError::NotSettled`] when the page finds no rest.
 pub fn top_page<T: folio_kernels::Real>(
     book: &crate::Book<T>,
     side: crate::BlockSide,
@@ -59,9 +60,14 @@ pub fn top_page<T: folio_kernels::Real>(
     };
     let q = book.layout().binding_parameter(before, 0);
     let at = |a: T, b: T| a.to_f64() + q * (b.to_f64() - a.to_f64());
-    let table = Level {
-        y: line.iter().map(|p| p[1]).fold(f64::INFINITY, f64::min),
-    };
+    let lowest = line.iter().map(|p| p[1]).fold(f64::INFINITY, f64::min);
+    let finite = line.iter().flatten().all(|c| c.is_finite());
+    if !(finite && lowest.is_finite()) {
+        return Err(ElasticaError::InvalidSetting(
+            folio_kernels::SettingError::new("midline", "finite"),
+        ));
+    }
+    let table = Level { y: lowest };
     let ground = Both(
         Band {
             line: &line,
@@ -78,11 +84,6 @@ pub fn top_page<T: folio_kernels::Real>(
         segments,
     };
     strip.validate()?;
-    let start = strip
-        .arched(&ground, side)
-        .ok_or(ElasticaError::NotSettled {
-            iterations: 0,
-            force: f64::INFINITY,
-        })?;
+    let start = strip.arched(&ground, side).ok_or(ElasticaError::NoStart)?;
     strip.settle(&ground, &start)
 }

@@ -31,6 +31,18 @@ pub struct Settings<T: Real> {
     /// \lVert C\rVert_\infty)$, is at most this (page units, and the constraints' own units).
     /// Finite, $\ge 0$. Default $\sqrt{\varepsilon}$ of the precision.
     pub tolerance: T,
+    /// Start Newton at the predictor $\bar x = x^{(k-1)} + h v^{(k-1)}$ (the free
+    /// coordinates) instead of at $x^{(k-1)}$: the point the inertia term pulls to, where
+    /// a page in free flight is already at its step's end. Default off (seed `000_…`
+    /// eq. 4 starts at $x^{(k-1)}$).
+    pub predictor: bool,
+    /// Start Newton's multipliers at the last committed step's $\lambda$ instead of 0
+    /// while the topology stays (a first step, a new topology, or a step after one that
+    /// failed in its iterations start at 0).
+    /// With [`Settings::constraint_hessian`] the first iteration's matrix then holds
+    /// $\sum_l \lambda_l \nabla^2 C_l$ too, and a step whose start already meets eq. 3
+    /// takes no iteration. Default off.
+    pub warm_multipliers: bool,
     /// Backtrack on the merit $\psi = E + \mu \lVert C\rVert_2$ (RHS19). Default on.
     pub line_search: bool,
     /// Most step halvings in the line search, at most 60. Default 20.
@@ -152,6 +164,8 @@ impl<T: Real> Default for Settings<T> {
             newton_iterations: 1,
             constraint_hessian: false,
             tolerance: sqrt_eps,
+            predictor: false,
+            warm_multipliers: false,
             line_search: true,
             max_halvings: 20,
             damping_retries: 4,

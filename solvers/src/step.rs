@@ -80,6 +80,9 @@ struct Workspace<T: Real> {
     constraint: Vec<T>,
     /// Current multipliers.
     lambda: Vec<T>,
+    /// `lambda` holds the multipliers of the last committed step of this topology
+    /// ([`Settings::warm_multipliers`]).
+    lambda_committed: bool,
     /// Mass per dof.
     mass: Vec<T>,
     /// $x^{(k-1)}$ and $\bar x$ per dof.
@@ -135,6 +138,7 @@ impl<T: Real> Workspace<T> {
             gradient: Vec::new(),
             constraint: Vec::new(),
             lambda: Vec::new(),
+            lambda_committed: false,
             mass: Vec::new(),
             x_prev: Vec::new(),
             x_bar: Vec::new(),
@@ -208,6 +212,7 @@ impl<T: Real> Workspace<T> {
         }
         refill(&mut self.constraint, rows, T::ZERO);
         refill(&mut self.lambda, rows, T::ZERO);
+        self.lambda_committed = false;
         refill(&mut self.x, nodes, T::Vec3::ZERO);
         refill(&mut self.trial, nodes, T::Vec3::ZERO);
         refill(&mut self.released, nodes, false);
@@ -413,11 +418,12 @@ impl<T: Real> Solver<T> {
         state: &State<T>,
     ) -> Result<bool, SolverError> {
         self.analyse(model)?;
-        let h = self.settings.time_step;
+        let s = self.settings;
+        let h = s.time_step;
         let Some(w) = self.work.as_mut() else {
             return Ok(false);
         };
-        if !w.begin(model, state, h)? {
+        if !w.begin(model, state, &s)? {
             return Ok(false);
         }
         let e = w.evaluate(model, h, false, Derivatives::Second)?;
@@ -444,9 +450,11 @@ impl<T: Real> Solver<T> {
         let Some(w) = self.work.as_mut() else {
             return Ok(report);
         };
-        if !w.begin(model, state, h)? {
+        if !w.begin(model, state, &s)? {
             return Ok(report);
         }
+        // Until this step commits, its multipliers are no start for the next.
+        w.lambda_committed = false;
         let mut converged = false;
         for iteration in 0..s.newton_iterations {
             match w.newton_iteration(model, &s, iteration, &mut report)? {
@@ -631,13 +639,17 @@ fn add_to<T: Real>(x: &mut [T::Vec3], coordinate_of: &[u32], v: &[T], alpha: T) 
 }
 
 impl<T: Real> Workspace<T> {
-    /// Loads $x^{(k-1)}$, $\bar x$ and the masses; `Ok(false)` for a non-finite state.
+    /// Loads $x^{(k-1)}$, $\bar x$ and the masses, and starts the iterate at $x^{(k-1)}$
+    /// (or $\bar x$, [`Settings::predictor`]) and the multipliers at 0 (or the last
+    /// committed step's, [`Settings::warm_multipliers`]); `Ok(false)` for a non-finite
+    /// state.
     fn begin<M: Model<T>>(
         &mut self,
         model: &M,
         state: &State<T>,
-        h: T,
+        s: &Settings<T>,
     ) -> Result<bool, SolverError> {
+        let h = s.time_step;
         let nodes = self.x.len();
         if state.x.len() != nodes || state.v.len() != nodes {
             return Err(SolverError::StateLength {
@@ -661,7 +673,18 @@ impl<T: Real> Workspace<T> {
             self.x_bar[d] = self.x_prev[d] + h * state.v[node].get(axis);
         }
         self.x.copy_from_slice(&state.x);
-        self.lambda.iter_mut().for_each(|l| *l = T::ZERO);
+        if s.predictor {
+            for (d, &c) in self.kkt.pattern.coordinate_of.iter().enumerate() {
+                let (node, axis) = (c as usize / 3, c as usize % 3);
+                self.x[node] += T::Vec3::AXES[axis] * (self.x_bar[d] - self.x_prev[d]);
+            }
+        }
+        let warm = s.warm_multipliers
+            && self.lambda_committed
+            && self.lambda.iter().all(|l| l.is_finite());
+        if !warm {
+            self.lambda.iter_mut().for_each(|l| *l = T::ZERO);
+        }
         Ok(true)
     }
 
@@ -793,7 +816,8 @@ impl<T: Real> Workspace<T> {
     }
 
     /// Writes the iterate and $v = (x - x^{(k-1)})/h$ into `state`.
-    fn commit(&self, state: &mut State<T>, h: T) {
+    fn commit(&mut self, state: &mut State<T>, h: T) {
+        self.lambda_committed = true;
         let inv_h = T::ONE / h;
         for ((x, v), &new) in state.x.iter_mut().zip(state.v.iter_mut()).zip(&self.x) {
             *v = (new - *x) * inv_h;

@@ -398,3 +398,92 @@ fn a_node_held_along_its_normal_slides_and_is_let_go_when_pulled_off() {
     // A surface above it does not hold it down: let go, it moves as if free.
     assert!((off - free).length() <= 1e-6, "{:?} {:?}", off, free);
 }
+
+/// A step of the chain kicked out of its "V" (Newton to 1e-12, the constraint Hessian):
+/// the state it ends in, and its report.
+fn converged_step(predictor: bool) -> (State<f64>, folio_solvers::StepReport<f64>) {
+    let chain = Chain::<f64>::new(LINKS, LENGTH, MASS);
+    let mut state = v_shape::<f64>(2.0);
+    for (k, v) in state.v.iter_mut().enumerate() {
+        *v = glam::DVec3::new(0.5, if k % 2 == 0 { 1.0 } else { -0.7 }, 0.3);
+    }
+    let settings = Settings {
+        time_step: 0.05,
+        newton_iterations: 20,
+        constraint_hessian: true,
+        tolerance: 1e-12,
+        predictor,
+        ..Settings::default()
+    };
+    let mut solver = Solver::new(settings).unwrap();
+    let report = solver.step(&chain, &mut state).unwrap();
+    assert_eq!(report.status, StepStatus::Converged, "{report:?}");
+    (state, report)
+}
+
+#[test]
+fn the_predictor_changes_where_newton_starts_not_where_it_ends() {
+    let (cold, cold_report) = converged_step(false);
+    let (predicted, predicted_report) = converged_step(true);
+    let mut worst: f64 = 0.0;
+    for (a, b) in cold.x.iter().zip(&predicted.x) {
+        worst = folio_tests::worst(worst, (*a - *b).abs().max_element());
+    }
+    println!(
+        "iterations: from x {} , from x + h v {}; states {worst:.1e} apart",
+        cold_report.iterations, predicted_report.iterations
+    );
+    assert!(worst <= 1e-9, "the two starts ended {worst:e} apart");
+}
+
+#[test]
+fn warm_multipliers_start_a_chain_at_rest_converged() {
+    let chain = Chain::<f64>::new(LINKS, LENGTH, MASS);
+    let mut state = v_shape::<f64>(2.0);
+    let settings = Settings {
+        time_step: 0.2,
+        newton_iterations: 5,
+        constraint_hessian: true,
+        tolerance: 1e-9,
+        warm_multipliers: true,
+        ..Settings::default()
+    };
+    let mut warm = Solver::new(settings).unwrap();
+    for _ in 0..400 {
+        let report = warm.step(&chain, &mut state).unwrap();
+        assert!(report.status.advanced(), "{report:?}");
+    }
+    let mut cold = warm.clone();
+    cold.set_settings(Settings {
+        warm_multipliers: false,
+        ..settings
+    })
+    .unwrap();
+    let (mut a, mut b) = (state.clone(), state.clone());
+    let warm_report = warm.step(&chain, &mut a).unwrap();
+    let cold_report = cold.step(&chain, &mut b).unwrap();
+    println!(
+        "at rest: warm {} iterations (residual {:?}), cold {} (residual {:?})",
+        warm_report.iterations, warm_report.residual, cold_report.iterations, cold_report.residual
+    );
+    // The link tensions that hold the chain up are the last step's multipliers: started
+    // with them, the chain at rest already meets eq. 3; started at 0, gravity is unbalanced.
+    assert_eq!(warm_report.status, StepStatus::Converged);
+    assert_eq!(warm_report.iterations, 0, "{warm_report:?}");
+    assert!(cold_report.iterations >= 1, "{cold_report:?}");
+    // A step refused for a non-finite input touches neither the state nor the
+    // multipliers: the next step from rest starts warm still.
+    let mut bad = a.clone();
+    bad.v[2].y = f64::NAN;
+    assert_eq!(
+        warm.step(&chain, &mut bad).unwrap().status,
+        StepStatus::NonFiniteInput
+    );
+    let after_refusal = warm.step(&chain, &mut a).unwrap();
+    assert_eq!(after_refusal.iterations, 0, "{after_refusal:?}");
+    // A new topology starts cold: the multipliers belong to the old rows.
+    let mut doubled = chain.clone();
+    doubled.duplicate_links();
+    let first = warm.step(&doubled, &mut a).unwrap();
+    assert!(first.iterations >= 1, "{first:?}");
+}

@@ -94,6 +94,10 @@ pub enum ElasticaError {
         /// The largest net force on a node over a segment's weight when it stopped.
         force: f64,
     },
+    /// No start was found: no arch from the root clears the ground ([`Elastica::arched`]).
+    NoStart,
+    /// The rest reached is not finite (a point, its depth in the ground or its strain).
+    NonFinite,
 }
 
 impl fmt::Display for ElasticaError {
@@ -104,6 +108,8 @@ impl fmt::Display for ElasticaError {
                 f,
                 "the elastica did not settle in {iterations} iterations (net force {force:.3e} of a segment's weight)"
             ),
+            Self::NoStart => write!(f, "no arch from the elastica's root clears the ground"),
+            Self::NonFinite => write!(f, "the elastica's rest is not finite"),
         }
     }
 }
@@ -238,7 +244,8 @@ impl Elastica {
     ///
     /// # Errors
     /// [`ElasticaError::InvalidSetting`] for a field out of range or a start of the wrong
-    /// length or not finite; [`ElasticaError::NotSettled`] when the iterations run out.
+    /// length or not finite; [`ElasticaError::NotSettled`] when the iterations run out;
+    /// [`ElasticaError::NonFinite`] for a rest that is not finite.
     pub fn settle(&self, ground: &impl Ground, start: &[Point2]) -> Result<Settled, ElasticaError> {
         self.validate()?;
         let n = self.segments;
@@ -301,6 +308,8 @@ impl Elastica {
         let mut further = x.clone();
         let mut step = vec![0.0; 2 * n];
         let mut contacts = Vec::new();
+        // The line search's own contact list: `contacts` holds the iterate's active sets.
+        let mut scratch = Vec::new();
         let mut active = Vec::new();
         let mut holds = Vec::new();
         let weight = self.sag / (self.length * self.length * self.length) * self.h();
@@ -311,7 +320,12 @@ impl Elastica {
         let mut damping = 0.0;
         let mut force = f64::INFINITY;
         for iteration in 0..MAX_ITERATIONS {
-            let energy = self.assemble(ground, &x, Some((&mut gradient, &mut hessian)));
+            let energy = self.assemble(
+                ground,
+                &x,
+                &mut scratch,
+                Some((&mut gradient, &mut hessian)),
+            );
             total.copy_from_slice(&gradient);
             self.contacts(ground, &x, &mut contacts);
             active.clear();
@@ -341,7 +355,7 @@ impl Elastica {
                     && folio_solvers::vector::max_abs(&step) <= STEP_TOLERANCE * self.length
                 {
                     let moved = folio_solvers::vector::max_abs(&step) / self.length;
-                    return Ok(self.settled(ground, &x, iteration, moved));
+                    return self.settled(ground, &x, iteration, moved);
                 }
                 let slope = -folio_solvers::vector::dot(&total, &step);
                 holds.clear();
@@ -358,7 +372,7 @@ impl Elastica {
                     };
                 }
                 self.retract(&x, &step, 1.0, &holds, &mut trial);
-                let mut reached = self.assemble(ground, &trial, None);
+                let mut reached = self.assemble(ground, &trial, &mut scratch, None);
                 if slope < 0.0 && reached <= energy + 1e-4 * slope + slack {
                     accepted = true;
                     if damping > 0.0 {
@@ -368,7 +382,7 @@ impl Elastica {
                         let mut t = 2.0;
                         while t <= MAX_EXTRAPOLATION {
                             self.retract(&x, &step, t, &holds, &mut further);
-                            let e = self.assemble(ground, &further, None);
+                            let e = self.assemble(ground, &further, &mut scratch, None);
                             if e.is_nan() || e >= reached {
                                 break;
                             }
@@ -625,11 +639,13 @@ impl Elastica {
     }
 
     /// $E_h/B$ at `x` (module docs); with `Some((gradient, hessian))`, also the gradient and
-    /// Hessian over the unknowns of every term but the ground's.
+    /// Hessian over the unknowns of every term but the ground's. `contacts` is a buffer
+    /// for the ground's contacts at `x` (no allocation once it has grown).
     fn assemble(
         &self,
         ground: &impl Ground,
         x: &[f64],
+        contacts: &mut Vec<Contact>,
         mut derivatives: Option<(&mut Vec<f64>, &mut Banded)>,
     ) -> f64 {
         let n = self.segments;
@@ -728,8 +744,7 @@ impl Elastica {
             );
         }
         // The ground's energy; its derivatives are the step's business ([`Elastica::settle`]).
-        let mut contacts = Vec::new();
-        self.contacts(ground, x, &mut contacts);
+        self.contacts(ground, x, contacts);
         for c in contacts.iter().filter(|c| c.gap < 0.0) {
             energy += 0.5 * contact * c.gap * c.gap;
         }
@@ -795,29 +810,42 @@ impl Elastica {
         }
     }
 
-    /// The result at `x`.
-    fn settled(&self, ground: &impl Ground, x: &[f64], iterations: u32, step: f64) -> Settled {
+    /// The result at `x`; [`ElasticaError::NonFinite`] when a point, its depth or a
+    /// segment's strain is not finite (the folds keep a NaN, they do not skip it).
+    fn settled(
+        &self,
+        ground: &impl Ground,
+        x: &[f64],
+        iterations: u32,
+        step: f64,
+    ) -> Result<Settled, ElasticaError> {
         let points: Vec<Point2> = (0..=self.segments).map(|k| self.node(x, k)).collect();
         let h = self.h();
-        let penetration = points[1..]
-            .iter()
-            .map(|&p| (-ground.signed_distance(p).0).max(0.0))
-            .fold(0.0, f64::max);
-        let strain = points
-            .windows(2)
-            .map(|w| {
-                let d = [w[1][0] - w[0][0], w[1][1] - w[0][1]];
-                (math::sqrt(d[0] * d[0] + d[1] * d[1]) / h - 1.0).abs()
-            })
-            .fold(0.0, f64::max);
-        Settled {
+        let penetration = largest(points[1..].iter().map(|&p| -ground.signed_distance(p).0));
+        let strain = largest(points.windows(2).map(|w| {
+            let d = [w[1][0] - w[0][0], w[1][1] - w[0][1]];
+            (math::sqrt(d[0] * d[0] + d[1] * d[1]) / h - 1.0).abs()
+        }));
+        let finite = points.iter().flatten().all(|c| c.is_finite());
+        if !(finite && penetration.is_finite() && strain.is_finite()) {
+            return Err(ElasticaError::NonFinite);
+        }
+        Ok(Settled {
             points,
             iterations,
             step,
             penetration,
             strain,
-        }
+        })
     }
+}
+
+/// The largest of `values` and 0; NaN when any is NaN (where `f64::max` would skip it).
+fn largest(values: impl Iterator<Item = f64>) -> f64 {
+    values.fold(
+        0.0,
+        |worst, v| if v.is_nan() || v > worst { v } else { worst },
+    )
 }
 
 /// `v` += `scale` times the gradient `grads` of a quantity over `nodes` (the root, node 0,
@@ -864,6 +892,16 @@ mod tests {
             sag: 0.0,
             segments: 8,
         }
+    }
+
+    #[test]
+    fn the_largest_keeps_a_nan_and_is_never_below_zero() {
+        use super::largest;
+        assert_eq!(largest([-1.0, 0.5, 0.25].into_iter()), 0.5);
+        assert_eq!(largest([-1.0, -2.0].into_iter()), 0.0);
+        // `f64::max` would give 3 for both.
+        assert!(largest([f64::NAN, 3.0].into_iter()).is_nan());
+        assert!(largest([3.0, f64::NAN].into_iter()).is_nan());
     }
 
     #[test]
