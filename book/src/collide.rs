@@ -28,6 +28,9 @@ impl<T: Real> Book<T> {
             .for_each(|n| *n = T::Vec3::ZERO);
         self.spring_friction();
         self.terms.clear_contacts();
+        if self.active.is_some() {
+            self.refresh_top_pages();
+        }
         let mut rounds = self.collide(contacts, self.settings.collision_rounds);
         // Projection and collision alternate: a node the projection moves into a block
         // is pushed out and held on its surface in the next projection, up to twice
@@ -148,8 +151,19 @@ impl<T: Real> Book<T> {
     /// The wall of segment `k` of the block on `side`, on the block's material side, with
     /// clearance `clearance`.
     fn block_wall(&self, side: BlockSide, k: usize, clearance: T) -> Option<Wall<T>> {
-        let line = self.midline(side);
-        let (a, b) = (line[k], line[k + 1]);
+        Self::wall_along(self.midline(side), side, k, clearance)
+    }
+
+    /// The wall of segment `k` of `line`, a curve from the binding out over the block on
+    /// `side` (a midline or a top page), on the block's material side, with clearance
+    /// `clearance`; only the line's last segment reaches on past its end.
+    pub(crate) fn wall_along(
+        line: &[T::Vec3],
+        side: BlockSide,
+        k: usize,
+        clearance: T,
+    ) -> Option<Wall<T>> {
+        let (a, b) = (*line.get(k)?, *line.get(k + 1)?);
         let d = b - a;
         let toward = match side {
             BlockSide::Left => T::Vec3::new(d.y(), -d.x(), T::ZERO),
@@ -207,16 +221,30 @@ impl<T: Real> Book<T> {
         }
     }
 
-    /// Walls the active page collides with: one per midline segment of each block.
+    /// Walls the active page collides with: one per midline segment of each block, then
+    /// one per segment of each block's top page ([`crate::Gutter::TopPage`]).
     fn page_walls(&self) -> usize {
         2 * (self.terms.nodes.midline - 1)
+            + self.top_page_segments(BlockSide::Left)
+            + self.top_page_segments(BlockSide::Right)
     }
 
     /// Wall `w` (`0..page_walls()`) the active page collides with: segment `w` of the left
     /// block's midline, then segment `w - (m - 1)` of the right block's, with the clearance
-    /// $t_{block} + t_{active}/2$ (seed Sec. 3.4). `None` for a degenerate segment.
+    /// $t_{block} + t_{active}/2$ (seed Sec. 3.4); then the left block's top page's
+    /// segments and the right one's ([`Book::top_page_wall`]). `None` for a degenerate
+    /// segment.
     fn page_wall(&self, w: usize) -> Option<Wall<T>> {
         let segments = self.terms.nodes.midline - 1;
+        if w >= 2 * segments {
+            let k = w - 2 * segments;
+            let left = self.top_page_segments(BlockSide::Left);
+            return if k < left {
+                self.top_page_wall(BlockSide::Left, k)
+            } else {
+                self.top_page_wall(BlockSide::Right, k - left)
+            };
+        }
         let side = if w < segments {
             BlockSide::Left
         } else {
@@ -242,19 +270,41 @@ impl<T: Real> Book<T> {
     }
 
     /// Rounded corners of the blocks' clearance bands ([`Corner`]): the spine edge of each
-    /// block (the start of its midline) and each inner midline node.
+    /// block (the start of its midline) and each inner midline node; then each inner node of
+    /// each block's top page ([`crate::Gutter::TopPage`]).
     fn page_corners(&self) -> usize {
-        2 * (self.terms.nodes.midline - 1)
+        let inner = |side| self.top_page_segments(side).saturating_sub(1);
+        2 * (self.terms.nodes.midline - 1) + inner(BlockSide::Left) + inner(BlockSide::Right)
     }
 
     /// Corner `k` (`0..page_corners()`): for `k = i` the start cap of the left block's
     /// midline (`i = 0`) or the corner between its segments `i - 1` and `i`, then the same
-    /// on the right block; `None` where the band turns towards the page (it leaves no gap
-    /// there) or a segment is degenerate.
+    /// on the right block; then the corners between consecutive segments of the left and
+    /// the right block's top page. `None` where the band turns towards the page (it leaves
+    /// no gap there) or a segment is degenerate, and for the start cap of a block that has
+    /// a top page: the top page leaves the hinge where the cap would clamp a page upright.
     fn page_corner(&self, k: usize) -> Option<Corner<T>> {
         let per_side = self.terms.nodes.midline - 1;
-        let first = if k < per_side { 0 } else { per_side };
+        if k >= 2 * per_side {
+            let i = k - 2 * per_side;
+            let left = self.top_page_segments(BlockSide::Left).saturating_sub(1);
+            let (side, i) = if i < left {
+                (BlockSide::Left, i)
+            } else {
+                (BlockSide::Right, i - left)
+            };
+            return Corner::new(
+                &self.top_page_wall(side, i)?,
+                &self.top_page_wall(side, i + 1)?,
+            );
+        }
+        let (first, side) = if k < per_side {
+            (0, BlockSide::Left)
+        } else {
+            (per_side, BlockSide::Right)
+        };
         match k % per_side {
+            0 if self.top_page_segments(side) > 0 => None,
             0 => Corner::start(&self.page_wall(first)?),
             i => Corner::new(&self.page_wall(first + i - 1)?, &self.page_wall(first + i)?),
         }

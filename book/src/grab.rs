@@ -56,6 +56,9 @@ impl<T: Real> Book<T> {
     /// edge, columns at equal arc lengths ([`resample`]), rows at equal steps along Z. The
     /// shape is a generalized cylinder with rulings along Z, an exact DOG.
     ///
+    /// Under [`crate::Gutter::TopPage`] the columns lie half the stack above the block's top
+    /// page ([`Book::top_page_walls`]), at equal arc lengths from the bound column.
+    ///
     /// The edge's radius is the block's thickness (plus half the stack): 0.38 for the
     /// default book's 50 pages a side, a quarter of a grid column (1.5), which cannot bend
     /// round it: laid around it, or straight with exact chords, the default page turn's
@@ -82,10 +85,24 @@ impl<T: Real> Book<T> {
             [bound.x().to_f64(), bound.y().to_f64()],
             [spine.x().to_f64(), spine.y().to_f64()],
         );
-        // Around the spine edge where the grid has a column or more on it; else straight
-        // from the binding to the block's top, past the edge.
+        // On the block's top page where the book keeps one (`Gutter::TopPage`); else around
+        // the spine edge where the grid has a column or more on it; else straight from the
+        // binding to the block's top, past the edge.
+        let top_page: Vec<[f64; 2]> = if cfg!(feature = "gutter") && self.counts.active > 0 {
+            self.refresh_top_pages();
+            self.top_page_walls(side)
+                .iter()
+                .map(|p| [p.x().to_f64(), p.y().to_f64()])
+                .collect()
+        } else {
+            Vec::new()
+        };
         let edge = 0.5 * core::f64::consts::PI * distance(spine, surface[0]);
-        let columns = if edge >= hx {
+        let columns = if top_page.len() >= 2 {
+            let mut curve = offset_curve(&top_page, side, half.to_f64());
+            curve[0] = bound;
+            resample(&curve, hx, n.grid.nx)
+        } else if edge >= hx {
             let mut curve = spine_arc(bound, spine, surface[0], 0.125 * hx);
             curve.extend_from_slice(&surface[1..]);
             walk_chords(&curve, hx, n.grid.nx)

@@ -19,9 +19,11 @@
 
 pub mod elastica;
 pub mod ground;
+mod walls;
 
 pub use elastica::{Elastica, ElasticaError, Root, Settled};
 pub use ground::{Air, Band, Both, Ground, Level, Point2};
+pub use walls::TOP_PAGE_WALLS;
 
 /// The segments of a block's top page as [`top_page`] settles it: issue 42 asks for at
 /// least 200.

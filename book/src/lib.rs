@@ -62,8 +62,9 @@ pub use model::{BookTerms, Family, NodeMap};
 pub use paper::{BookUnits, Paper};
 pub use script::{Action, Event, Script, ScriptError};
 pub use settings::{
-    BookSettings, IsometryHessian, MAX_PROJECTION_ITERATIONS, MAX_TIME_STEP, MICROCONTROLLER_GRID,
-    MIN_CELL_TOLERANCES, MIN_TIME_STEP, SOFT_BEND_PAGE_MIN, WEIGHT_RANGES, Weights,
+    BookSettings, Gutter, IsometryHessian, MAX_PROJECTION_ITERATIONS, MAX_TIME_STEP,
+    MICROCONTROLLER_GRID, MIN_CELL_TOLERANCES, MIN_TIME_STEP, SOFT_BEND_PAGE_MIN, WEIGHT_RANGES,
+    Weights,
 };
 pub use simulation::{
     Book, BookStepReport, BookmarkOutcome, DragOutcome, GrabOutcome, InputOutcome, PageCounts,

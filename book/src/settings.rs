@@ -137,6 +137,31 @@ impl IsometryHessian {
     }
 }
 
+/// What the active page meets near the binding (issue 42; Folio's choice against the seed's,
+/// [`crate::gutter`]).
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Gutter {
+    /// The seed's (Sec. 3.4): each block is the clearance band around its midline, with a
+    /// rounded cap at its spine edge, a quarter disk about the block's binding node that
+    /// clamps a page leaving the hinge upright (`docs/accuracy.md`, "the gutter is a cusp").
+    #[default]
+    Seed,
+    /// Each block's top page as paper lies ([`crate::gutter::top_page`], 200 segments): a
+    /// heavy elastica from the hinge over its block cut square at the binding, solved when
+    /// the page counts change (a grab, a merge, a flip) and kept as
+    /// [`crate::gutter::TOP_PAGE_WALLS`] walls the active page stays above (clearance half
+    /// the active page plus half a page). The blocks' midline walls stay; their rounded
+    /// caps at the spine edge go. A grabbed page is laid on its block's top page. Needs
+    /// the Cargo feature `gutter` (the firmware leaves it out: the elastica's solver is
+    /// 47 KB of flash).
+    TopPage,
+}
+
 /// Everything that defines a simulated book.
 #[cfg_attr(
     feature = "serde",
@@ -161,6 +186,8 @@ pub struct BookSettings<T: Real> {
     /// (`weights.bend_page` below 30: every book paper [`crate::Paper::apply`] gives) takes
     /// `Projected`.
     pub isometry_hessian: IsometryHessian,
+    /// What the active page meets near the binding ([`Gutter`]). Default `Seed`.
+    pub gutter: Gutter,
     /// Gravitational acceleration (page units per s², along −Y; finite, $\ge 0$). Default 9.81.
     pub gravity: T,
     /// Linear air drag $c$ (1/s; finite, $\ge 0$): before each step every velocity is divided
@@ -279,6 +306,7 @@ impl<T: Real> Default for BookSettings<T> {
             quads_along: 11,
             weights: Weights::default(),
             isometry_hessian: IsometryHessian::Exact,
+            gutter: Gutter::Seed,
             gravity: T::from_f64(9.81),
             air_drag: T::from_f64(3.0),
             page_mass: T::ONE,
@@ -444,6 +472,12 @@ impl<T: Real> BookSettings<T> {
     pub fn validate(&self) -> Result<(), SettingError> {
         self.params.validate().map_err(|e| e.within("params"))?;
         self.effects.validate().map_err(|e| e.within("effects"))?;
+        if self.gutter == Gutter::TopPage && !cfg!(feature = "gutter") {
+            return Err(SettingError::new(
+                "gutter",
+                "\"seed\": the top-page gutter's Cargo feature (gutter) of folio-book is not enabled",
+            ));
+        }
         // The book's range of the step first: it is narrower than the solver's.
         let h = self.solver.time_step.to_f64();
         require(

@@ -222,6 +222,13 @@ pub struct Book<T: Real> {
     /// Consecutive steps at rest with every block and cover node slower than
     /// [`BookSettings::sleep_speed`]; the book sleeps from `sleep_frames` on.
     pub(crate) quiet_frames: u32,
+    /// Each block's top page as walls, left then right ([`crate::Gutter::TopPage`],
+    /// `gutter/walls.rs`); empty under the seed's gutter.
+    pub(crate) top_pages: [Vec<T::Vec3>; 2],
+    /// The page counts the top pages were settled for.
+    pub(crate) top_page_counts: Option<PageCounts>,
+    /// Top pages that did not settle ([`Book::top_page_failures`]).
+    pub(crate) top_page_failures: u32,
 }
 
 impl<T: Real> BookStepReport<T> {
@@ -292,6 +299,9 @@ impl<T: Real> Book<T> {
             broad: PageBroadPhase::new(n),
             census: [TermCensus::default(); 2],
             quiet_frames: 0,
+            top_pages: [Vec::new(), Vec::new()],
+            top_page_counts: None,
+            top_page_failures: 0,
         };
         book.place_page(BlockSide::Right, 1);
         book.update_masses();

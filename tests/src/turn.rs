@@ -30,6 +30,19 @@ pub struct Turned {
 /// # Errors
 /// A grab, drag or step the book refuses.
 pub fn turn_page(book: &mut Book<f64>, script: &TouchScript) -> Result<Turned, BookError> {
+    turn_page_watching(book, script, |_| {})
+}
+
+/// [`turn_page`], calling `watch` with the book after every step that did not merge the
+/// page (the last call sees the page as it came to rest, the frame before its merge).
+///
+/// # Errors
+/// A grab, drag or step the book refuses.
+pub fn turn_page_watching(
+    book: &mut Book<f64>,
+    script: &TouchScript,
+    mut watch: impl FnMut(&Book<f64>),
+) -> Result<Turned, BookError> {
     let (mut origin, mut offset) = (V::ZERO, V::ZERO);
     let point = |p: [f64; 3]| V::new(p[0], p[1], p[2]);
     let mut out = Turned::default();
@@ -83,6 +96,7 @@ pub fn turn_page(book: &mut Book<f64>, script: &TouchScript) -> Result<Turned, B
             out.merged = Some((side, f.saturating_sub(script.release_frame())));
             return Ok(out);
         }
+        watch(book);
     }
     Ok(out)
 }

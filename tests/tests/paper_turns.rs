@@ -6,8 +6,9 @@
 //! a book paper's page (bible, novel, magazine) also within 2 % in the grab's first frame.
 //! The card's is 3.5 %: its 380 µm pages make the default 100-page block 3.1 page units
 //! thick, and the seed's own page grabbed from a block that thick stretches 4.9 % there
-//! (0.26 % on its usual block): the gutter's shape, which issue 42 models next, not the
-//! paper's stiffness.
+//! (0.26 % on its usual block): the gutter's shape, not the paper's stiffness. Laid on its
+//! block's top page instead (`Gutter::TopPage`, `top_page_gutter.rs`), the card's page
+//! stretches by 0.05 % there.
 //!
 //! Before `Paper::apply` kept the page's weight and set its bending (it used to keep the
 //! bending and make the page heavier) and the soft page took the projected Hessian, the

@@ -210,6 +210,17 @@ fn declared_variants_are_distinct_and_include_the_default_dog_page() {
         let mut labels: Vec<&str> = declared.iter().map(|v| v.label.as_str()).collect();
         assert_eq!(labels[0], format!("{model} default"), "{labels:?}");
         assert!(labels.contains(&"dog default"), "{model}: {labels:?}");
+        // Issue 42's Newton rows: 1 (the default), 2, 3 and 4 iterations, and Newton to
+        // the tolerances 1e-3 and 1e-6.
+        for row in [
+            "dog newton 2, hessian",
+            "dog newton 3, hessian",
+            "dog newton 4, hessian",
+            "dog newton 20, tol 1e-3, hessian",
+            "dog newton 20, tol 1e-6, hessian",
+        ] {
+            assert!(labels.contains(&row), "{model}: no {row} in {labels:?}");
+        }
         labels.sort_unstable();
         let n = labels.len();
         labels.dedup();

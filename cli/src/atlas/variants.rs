@@ -236,6 +236,30 @@ pub fn declared(model: &str) -> Vec<Variant> {
             hessian: true,
             ..none
         }),
+        // Issue 42's Newton rows: 3 and 4 iterations (with the Hessian: without it the
+        // iteration is not Newton's), and Newton to a tolerance under the reference's cap.
+        dog(Knobs {
+            newton: Some(3),
+            hessian: true,
+            ..none
+        }),
+        dog(Knobs {
+            newton: Some(4),
+            hessian: true,
+            ..none
+        }),
+        dog(Knobs {
+            newton: Some(REFERENCE_NEWTON),
+            tolerance: Some(1e-3),
+            hessian: true,
+            ..none
+        }),
+        dog(Knobs {
+            newton: Some(REFERENCE_NEWTON),
+            tolerance: Some(1e-6),
+            hessian: true,
+            ..none
+        }),
         dog(Knobs { f32: true, ..none }),
         // The microcontroller book (`page-turn-mcu`): f32 on the coarse grid.
         dog(Knobs {

@@ -1,0 +1,200 @@
+//! The book with its blocks' top pages as the gutter (`Gutter::TopPage`, issue 42).
+//!
+//! **The grab.** A page grabbed from its block is laid on the block's top page. In the
+//! frame of the grab and its first pull, a card's page stretches by 0.05 % at most on
+//! 8 x 11 and 16 x 22 (the seed's gutter: up to 6.6 %); a book paper's page by up to 6.5 %,
+//! over issue 42's 2 % (an ignored test says so: the pull is not yet scaled with the paper).
+//!
+//! **R2 of issue 42, a released page's rest on its block.** The page turned by the shared page
+//! turn (`TouchScript::page_turn`) comes to rest on the left block, and in the frame before
+//! it merges its chord from the hinge to a quarter of the page out (the middle row) is
+//! compared with the one-dimensional reference, the heavy elastica over the same block
+//! (`folio_book::gutter::top_page` at 200 segments, solved on that frame's book: an
+//! independent model, Newton on a strip's nodes, checked against the shooting cantilever
+//! and its Richardson limit in `gutter.rs`).
+//!
+//! Under the seed's gutter (`Gutter::Seed`) the page rests on what the grid sees of the
+//! block's rounded spine edge (`docs/accuracy.md`, "the gutter is a cusp"); under
+//! `Gutter::TopPage` the active page is tested against the block's own top page, and its
+//! rest is the elastica's.
+
+use folio_book::{BlockSide, Book, BookSettings, Gutter, Stock, gutter};
+use folio_pages::TouchScript;
+use folio_tests::turn::turn_page_watching;
+
+/// A5's width (ISO 216), m.
+const A5_WIDTH: f64 = 0.148;
+
+/// The chord of a curve from `root` to `point` above the table, seen from the hinge
+/// towards the left block (degrees).
+fn chord(root: [f64; 2], point: [f64; 2]) -> f64 {
+    (point[1] - root[1]).atan2(root[0] - point[0]).to_degrees()
+}
+
+/// A released page at rest on the left block: its chord to a quarter of the page out, and
+/// the 1D reference's over the same block.
+struct Rest {
+    page: f64,
+    reference: f64,
+}
+
+/// The default book of `stock` (the seed's card for `None`) with `gutter` on a grid of
+/// `quads` (across, along), half its pages on each side.
+fn settings(stock: Option<Stock>, gutter: Gutter, quads: [usize; 2]) -> BookSettings<f64> {
+    let mut s = BookSettings::<f64>::default();
+    s.params.left_pages = s.params.total_pages / 2;
+    if let Some(stock) = stock {
+        let aspect = s.params.aspect_ratio;
+        stock
+            .cut(A5_WIDTH, A5_WIDTH * aspect)
+            .apply(&mut s)
+            .expect("a built-in paper");
+    }
+    s.gutter = gutter;
+    [s.quads_across, s.quads_along] = quads;
+    s
+}
+
+/// The shared page turn on `settings`' book (across a multiple of 4) to the frame before
+/// the released page merges.
+fn rest(stock: Option<Stock>, gutter: Gutter, quads: [usize; 2]) -> Rest {
+    let mut book = Book::new(settings(stock, gutter, quads)).expect("the book");
+    let [w, h] = book.page_size();
+    let script = TouchScript::page_turn(w, h, 10, 120, 600);
+    let mut last = None;
+    let turned = turn_page_watching(&mut book, &script, |b| {
+        if b.page().is_some() {
+            last = Some(b.clone());
+        }
+    })
+    .expect("the turn plays");
+    assert_eq!(
+        turned.merged.map(|m| m.0),
+        Some(BlockSide::Left),
+        "{turned:?}"
+    );
+    assert_eq!(turned.failed_steps, 0, "{turned:?}");
+    let at_rest = last.expect("a page before the merge");
+    assert_eq!(at_rest.top_page_failures(), 0);
+    let page = at_rest.page().expect("the page");
+    let grid = at_rest.nodes().grid;
+    // Node columns: one more than the quads across.
+    assert_eq!((grid.nx - 1) % 4, 0, "a column at a quarter of the page");
+    let (hinge, quarter) = (
+        page[grid.index(0, grid.nz / 2)],
+        page[grid.index((grid.nx - 1) / 4, grid.nz / 2)],
+    );
+    let top = gutter::top_page(&at_rest, BlockSide::Left, gutter::TOP_PAGE_SEGMENTS)
+        .expect("the left block's top page settles");
+    let segments = gutter::TOP_PAGE_SEGMENTS;
+    Rest {
+        page: chord([hinge.x, hinge.y], [quarter.x, quarter.y]),
+        reference: chord(top.points[0], top.points[segments / 4]),
+    }
+}
+
+#[test]
+fn a_released_page_rests_on_its_block_as_the_1d_elastica_over_it() {
+    // (paper, grid, bound in degrees): R2's 2 at the default grid, 1 at 16 x 22.
+    let cases: [(Option<Stock>, [usize; 2], f64); 4] = [
+        (Some(Stock::NOVEL), [8, 11], 2.0),
+        (Some(Stock::NOVEL), [16, 22], 1.0),
+        (None, [8, 11], 2.0),
+        (None, [16, 22], 1.0),
+    ];
+    let mut misses = Vec::new();
+    for (stock, quads, bound) in cases {
+        let name = stock.map_or("seed card", |_| "novel");
+        let seed = rest(stock, Gutter::Seed, quads);
+        let top = rest(stock, Gutter::TopPage, quads);
+        println!(
+            "{name} {quads:?}: 1D {:.2} deg; top-page gutter {:.2} ({:+.2}); seed's gutter {:.2} ({:+.2})",
+            top.reference,
+            top.page,
+            top.page - top.reference,
+            seed.page,
+            seed.page - seed.reference,
+        );
+        if (top.page - top.reference).abs() > bound {
+            misses.push((name, quads, top.page - top.reference));
+        }
+    }
+    assert!(misses.is_empty(), "{misses:?}");
+}
+
+/// The grab frame's largest edge stretch of each paper's page on 8 x 11 and 16 x 22 under
+/// `Gutter::TopPage`, over the shared page turn (which must play without a failed step, within
+/// the run guard's 10 %, and with both blocks' top pages kept); the papers whose page
+/// stretches by more than 2 % there.
+fn grab_misses(papers: &[(&str, Option<Stock>)]) -> Vec<(String, [usize; 2], f64)> {
+    let mut misses = Vec::new();
+    for &(name, stock) in papers {
+        for quads in [[8, 11], [16, 22]] {
+            let mut book = Book::new(settings(stock, Gutter::TopPage, quads)).expect("the book");
+            let [w, h] = book.page_size();
+            let script = TouchScript::page_turn(w, h, 10, 120, 600);
+            let mut frames = 0;
+            let turned = turn_page_watching(&mut book, &script, |b| {
+                frames += 1;
+                if frames == 12 {
+                    // Both blocks keep a top page of TOP_PAGE_WALLS segments from the hinge.
+                    for side in [BlockSide::Left, BlockSide::Right] {
+                        let walls = b.top_page_walls(side);
+                        assert_eq!(walls.len(), gutter::TOP_PAGE_WALLS + 1, "{name} {side:?}");
+                        assert!(walls.iter().all(|p| p.is_finite()), "{name} {side:?}");
+                    }
+                }
+            })
+            .expect("the turn plays");
+            println!(
+                "{name} {quads:?}: grab frame {:.4}, max {:.4} at frame {}, merged {:?}",
+                turned.grab_stretch, turned.max_stretch.0, turned.max_stretch.1, turned.merged
+            );
+            assert!(turned.grabbed, "{name} {quads:?}");
+            assert_eq!(turned.failed_steps, 0, "{name} {quads:?}: {turned:?}");
+            assert!(turned.max_stretch.0 <= 0.10, "{name} {quads:?}: {turned:?}");
+            assert_eq!(book.top_page_failures(), 0, "{name} {quads:?}");
+            if turned.grab_stretch > 0.02 {
+                misses.push((name.to_string(), quads, turned.grab_stretch));
+            }
+        }
+    }
+    misses
+}
+
+/// Measured 0.04 % and 0.02 % (the seed's card), 0.05 % and 0.02 % (card) on 8 x 11 and
+/// 16 x 22; under the seed's gutter 0.26 % and 2.3 %, 3.5 % and 6.6 %.
+#[test]
+fn a_card_page_grabbed_from_its_block_starts_on_its_top_page() {
+    let misses = grab_misses(&[("seed card", None), ("card", Some(Stock::CARD))]);
+    assert!(misses.is_empty(), "{misses:?}");
+}
+
+/// Issue 42's bound for every paper, not met by the book papers: measured (8 x 11, 16 x 22)
+/// bible 1.7 % and 6.5 %, novel 2.2 % and 2.1 %, magazine 2.3 % and 2.2 % (under the seed's
+/// gutter 0.57 % and 3.5 %, 2.0 % and 7.3 %, 1.7 % and 6.6 %). The page is laid on its top
+/// page unstretched (0.08 % in the grab's frame of the `page-turn` fixture, whose first pull
+/// comes a frame later); what stretches it is the first step's pull, whose weight and grip
+/// were set for the seed's card and which `Paper::apply` does not scale with the paper.
+#[test]
+#[ignore = "issue 42: the grab's pull is not yet scaled with the paper (book papers 2.1-6.5 %)"]
+fn a_book_paper_page_grabbed_from_its_block_stretches_by_2_percent_at_most() {
+    let misses = grab_misses(&[
+        ("bible", Some(Stock::BIBLE)),
+        ("novel", Some(Stock::NOVEL)),
+        ("magazine", Some(Stock::MAGAZINE)),
+    ]);
+    assert!(misses.is_empty(), "{misses:?}");
+}
+
+#[test]
+fn the_seeds_gutter_keeps_no_top_page() {
+    let mut book = Book::new(settings(None, Gutter::Seed, [8, 11])).expect("the book");
+    let [w, h] = book.page_size();
+    let script = TouchScript::page_turn(w, h, 10, 120, 600);
+    turn_page_watching(&mut book, &script, |b| {
+        assert!(b.top_page_walls(BlockSide::Left).is_empty());
+        assert!(b.top_page_walls(BlockSide::Right).is_empty());
+    })
+    .expect("the turn plays");
+}
