@@ -3,7 +3,9 @@
 //!
 //! A frame is bad when its step's input or its state is non-finite, its step failed or was
 //! refused beyond the scene's allowance (`expect.failed_steps`, default 0), an input of
-//! the frame did nothing (a grab that missed the page), or a measure crossed its bound:
+//! the frame did nothing (a grab that missed the page), a block's top page did not settle
+//! (`book.gutter = "top-page"`: that block met the seed's walls), or a measure crossed its
+//! bound:
 //! the max edge stretch $\max \lvert \ell/\ell_0 - 1\rvert$ (default [`MAX_STRETCH`]), the DOG
 //! residual $\max \lvert C_{\mathrm{DOG}}\rvert$ (default [`DOG_RESIDUAL`]) and the page's
 //! penetration into a block (default one page thickness; held only when the scene
@@ -58,10 +60,19 @@ pub fn judge(records: &mut [FrameRecord], bounds: Bounds) -> Health {
         stretch_over: 0,
         dog_residual_over: 0,
         penetration_over: 0,
+        gutter_failures: 0,
         first_bad: None,
     };
     for r in records.iter_mut() {
         let mut p = Vec::new();
+        let failures = r.gutter_failures.unwrap_or(0);
+        if failures > h.gutter_failures {
+            p.push(format!(
+                "{} block top page(s) did not settle: the seed's walls stood in",
+                failures - h.gutter_failures
+            ));
+            h.gutter_failures = failures;
+        }
         if r.nonfinite_input {
             h.nonfinite_input_frames += 1;
             p.push("the step's input was non-finite".to_string());
@@ -232,6 +243,27 @@ mod tests {
             ..record(0, "IterationLimit")
         }];
         assert!(judge(&mut good, BOUNDS).good());
+    }
+
+    #[test]
+    fn a_top_page_that_did_not_settle_makes_its_frame_bad() {
+        let with = |frame: u32, failures: u32| FrameRecord {
+            gutter_failures: Some(failures),
+            ..record(frame, "Converged")
+        };
+        let mut records = vec![with(0, 0), with(1, 0), with(2, 1), with(3, 1), with(4, 3)];
+        let h = judge(&mut records, BOUNDS);
+        // The count is the book's running total: frames 2 and 4 are where it grew.
+        assert_eq!((h.gutter_failures, h.bad_frames), (3, 2));
+        let first = h.first_bad.expect("bad");
+        assert_eq!(first.frame, 2);
+        assert!(first.why.contains("did not settle"), "{}", first.why);
+        assert!(records[3].problems.is_empty());
+        assert!(
+            records[4].problems[0].starts_with("2 block"),
+            "{:?}",
+            records[4].problems
+        );
     }
 
     #[test]

@@ -46,6 +46,10 @@ pub struct FrameRecord {
     /// The book slept through every step of the frame: no solver work (DOG book;
     /// `folio_book::Book::is_asleep`).
     pub asleep: Option<bool>,
+    /// Blocks' top pages that did not settle so far, each block then meeting the seed's
+    /// walls instead (DOG book under `book.gutter = "top-page"`,
+    /// `folio_book::Book::top_page_failures`; a frame where it grows is bad).
+    pub gutter_failures: Option<u32>,
     /// Tear propagations in the frame (sheet).
     pub propagations: Option<u32>,
     /// Propagations the Griffith criterion allowed but the mesh refused (sheet).
@@ -91,6 +95,7 @@ impl FrameRecord {
             newton_iterations: None,
             snapshot: None,
             asleep: None,
+            gutter_failures: None,
             propagations: None,
             refused: None,
             flips: None,
@@ -300,6 +305,8 @@ pub struct Health {
     pub dog_residual_over: usize,
     /// Frames above the penetration bound.
     pub penetration_over: usize,
+    /// Blocks' top pages that did not settle ([`FrameRecord::gutter_failures`]).
+    pub gutter_failures: u32,
     /// The first bad frame, if any.
     pub first_bad: Option<FirstBad>,
 }

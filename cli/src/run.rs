@@ -380,6 +380,7 @@ fn book_record<T: Real>(
         rmse_stretch: stretch.map(|s| s.1.to_f64()),
         dog_residual: book.dog_residual().map(Real::to_f64),
         penetration: book.penetration().map(Real::to_f64),
+        gutter_failures: Some(book.top_page_failures()),
         nonfinite: record.nonfinite || !finite,
         ..record
     };
