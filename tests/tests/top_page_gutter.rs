@@ -56,8 +56,10 @@ fn settings(stock: Option<Stock>, gutter: Gutter, quads: [usize; 2]) -> BookSett
 }
 
 /// The shared page turn on `settings`' book (across a multiple of 4) to the frame before
-/// the released page merges.
-fn rest(stock: Option<Stock>, gutter: Gutter, quads: [usize; 2]) -> Rest {
+/// the released page merges; `None` when it has not merged into the left block by the
+/// script's end (the seed's gutter on novel paper at 16 x 22 merges on x86 and not on
+/// aarch64: its turn is decided by rounding).
+fn rest(stock: Option<Stock>, gutter: Gutter, quads: [usize; 2]) -> Option<Rest> {
     let mut book = Book::new(settings(stock, gutter, quads)).expect("the book");
     let [w, h] = book.page_size();
     let script = TouchScript::page_turn(w, h, 10, 120, 600);
@@ -68,12 +70,11 @@ fn rest(stock: Option<Stock>, gutter: Gutter, quads: [usize; 2]) -> Rest {
         }
     })
     .expect("the turn plays");
-    assert_eq!(
-        turned.merged.map(|m| m.0),
-        Some(BlockSide::Left),
-        "{turned:?}"
-    );
     assert_eq!(turned.failed_steps, 0, "{turned:?}");
+    if turned.merged.map(|m| m.0) != Some(BlockSide::Left) {
+        println!("{gutter:?} {quads:?}: the page did not merge left: {turned:?}");
+        return None;
+    }
     let at_rest = last.expect("a page before the merge");
     assert_eq!(at_rest.top_page_failures(), 0);
     let page = at_rest.page().expect("the page");
@@ -87,10 +88,10 @@ fn rest(stock: Option<Stock>, gutter: Gutter, quads: [usize; 2]) -> Rest {
     let top = gutter::top_page(&at_rest, BlockSide::Left, gutter::TOP_PAGE_SEGMENTS)
         .expect("the left block's top page settles");
     let segments = gutter::TOP_PAGE_SEGMENTS;
-    Rest {
+    Some(Rest {
         page: chord([hinge.x, hinge.y], [quarter.x, quarter.y]),
         reference: chord(top.points[0], top.points[segments / 4]),
-    }
+    })
 }
 
 #[test]
@@ -105,15 +106,16 @@ fn a_released_page_rests_on_its_block_as_the_1d_elastica_over_it() {
     let mut misses = Vec::new();
     for (stock, quads, bound) in cases {
         let name = stock.map_or("seed card", |_| "novel");
-        let seed = rest(stock, Gutter::Seed, quads);
-        let top = rest(stock, Gutter::TopPage, quads);
+        // The seed's gutter for comparison only (its page need not land).
+        let seed = rest(stock, Gutter::Seed, quads).map_or("did not land".to_string(), |r| {
+            format!("{:.2} ({:+.2})", r.page, r.page - r.reference)
+        });
+        let top = rest(stock, Gutter::TopPage, quads).expect("the page lands on the left block");
         println!(
-            "{name} {quads:?}: 1D {:.2} deg; top-page gutter {:.2} ({:+.2}); seed's gutter {:.2} ({:+.2})",
+            "{name} {quads:?}: 1D {:.2} deg; top-page gutter {:.2} ({:+.2}); seed's gutter {seed}",
             top.reference,
             top.page,
             top.page - top.reference,
-            seed.page,
-            seed.page - seed.reference,
         );
         if (top.page - top.reference).abs() > bound {
             misses.push((name, quads, top.page - top.reference));
