@@ -3,8 +3,9 @@
 //! the DOG page model drives it, with what the tests and probes read off it.
 
 use folio_book::{BlockSide, Book, BookError, GrabOutcome};
-use folio_kernels::{Real, Vec3Ops};
+use folio_kernels::Real;
 use folio_pages::TouchScript;
+use folio_pages::dog::finger_frame;
 use folio_pages::touch::Touch;
 
 type V = <f64 as Real>::Vec3;
@@ -56,19 +57,9 @@ pub fn turn_page_watching(
                 };
                 out.grabbed = true;
                 grab_frame = Some(f);
-                // The finger's frame: the page's corner at the binding, at the fore-edge's
-                // height; the offset puts the held node where the finger touched.
-                if let Some(page) = book.page() {
-                    let grid = book.nodes().grid;
-                    let (corner, edge) = (page[0], page[grid.index(grid.nx - 1, 0)]);
-                    origin = V::new(corner.x(), edge.y(), 0.0);
-                    let spacing = book.grid_spacing();
-                    let (i, j) = grid.coords(node);
-                    offset = V::new(
-                        i as f64 * spacing[0] - at[0],
-                        0.0,
-                        j as f64 * spacing[1] - at[1],
-                    );
+                // The finger's frame: the finger holds the node where it lies.
+                if let Some(frame) = finger_frame(book, BlockSide::Right, node, at) {
+                    (origin, offset) = frame;
                 }
                 book.drag_to(point(finger) + offset + origin)?;
             }

@@ -1,9 +1,10 @@
 //! The book with its blocks' top pages as the gutter (`Gutter::TopPage`, issue 42).
 //!
-//! **The grab.** A page grabbed from its block is laid on the block's top page. In the
-//! frame of the grab and its first pull, a card's page stretches by 0.05 % at most on
-//! 8 x 11 and 16 x 22 (the seed's gutter: up to 6.6 %); a book paper's page by up to 6.5 %,
-//! over issue 42's 2 % (an ignored test says so: the pull is not yet scaled with the paper).
+//! **The grab.** A page grabbed from its block is laid on the block's top page, and the
+//! finger holds it where it lies. In the frame of the grab and its first pull a card's page
+//! stretches by 0.01 % at most on 8 x 11 and 16 x 22 (the seed's gutter: up to 6.6 %), a
+//! book paper's by 0.91 % at most (issue 42's bound: 2 %). Over the rest of the turn a book
+//! paper's page at 16 x 22 stretches by up to 10.2 %, over the run guard (an ignored test).
 //!
 //! **R2 of issue 42, a released page's rest on its block.** The page turned by the shared page
 //! turn (`TouchScript::page_turn`) comes to rest on the left block, and in the frame before
@@ -125,10 +126,10 @@ fn a_released_page_rests_on_its_block_as_the_1d_elastica_over_it() {
 }
 
 /// The grab frame's largest edge stretch of each paper's page on 8 x 11 and 16 x 22 under
-/// `Gutter::TopPage`, over the shared page turn (which must play without a failed step, within
-/// the run guard's 10 %, and with both blocks' top pages kept); the papers whose page
-/// stretches by more than 2 % there.
-fn grab_misses(papers: &[(&str, Option<Stock>)]) -> Vec<(String, [usize; 2], f64)> {
+/// `Gutter::TopPage`, over the shared page turn (which must play without a failed step and
+/// with both blocks' top pages kept, and, when `guard`, within the run guard's 10 %); the
+/// papers whose page stretches by more than 2 % in the grab's frame.
+fn grab_misses(papers: &[(&str, Option<Stock>)], guard: bool) -> Vec<(String, [usize; 2], f64)> {
     let mut misses = Vec::new();
     for &(name, stock) in papers {
         for quads in [[8, 11], [16, 22]] {
@@ -154,7 +155,10 @@ fn grab_misses(papers: &[(&str, Option<Stock>)]) -> Vec<(String, [usize; 2], f64
             );
             assert!(turned.grabbed, "{name} {quads:?}");
             assert_eq!(turned.failed_steps, 0, "{name} {quads:?}: {turned:?}");
-            assert!(turned.max_stretch.0 <= 0.10, "{name} {quads:?}: {turned:?}");
+            assert!(
+                !guard || turned.max_stretch.0 <= 0.10,
+                "{name} {quads:?}: {turned:?}"
+            );
             assert_eq!(book.top_page_failures(), 0, "{name} {quads:?}");
             if turned.grab_stretch > 0.02 {
                 misses.push((name.to_string(), quads, turned.grab_stretch));
@@ -164,29 +168,86 @@ fn grab_misses(papers: &[(&str, Option<Stock>)]) -> Vec<(String, [usize; 2], f64
     misses
 }
 
-/// Measured 0.04 % and 0.02 % (the seed's card), 0.05 % and 0.02 % (card) on 8 x 11 and
-/// 16 x 22; under the seed's gutter 0.26 % and 2.3 %, 3.5 % and 6.6 %.
+/// The book papers of `Stock::BUILT_IN`.
+const BOOK_PAPERS: [(&str, Option<Stock>); 3] = [
+    ("bible", Some(Stock::BIBLE)),
+    ("novel", Some(Stock::NOVEL)),
+    ("magazine", Some(Stock::MAGAZINE)),
+];
+
+/// Measured 0.00 % (the seed's card) and 0.01 % (card) on 8 x 11 and 16 x 22; under the
+/// seed's gutter 0.26 % and 2.3 %, 3.5 % and 6.6 %.
 #[test]
 fn a_card_page_grabbed_from_its_block_starts_on_its_top_page() {
-    let misses = grab_misses(&[("seed card", None), ("card", Some(Stock::CARD))]);
+    let misses = grab_misses(&[("seed card", None), ("card", Some(Stock::CARD))], true);
     assert!(misses.is_empty(), "{misses:?}");
 }
 
-/// Issue 42's bound for every paper, not met by the book papers: measured (8 x 11, 16 x 22)
-/// bible 1.7 % and 6.5 %, novel 2.2 % and 2.1 %, magazine 2.3 % and 2.2 % (under the seed's
-/// gutter 0.57 % and 3.5 %, 2.0 % and 7.3 %, 1.7 % and 6.6 %). The page is laid on its top
-/// page unstretched (0.08 % in the grab's frame of the `page-turn` fixture, whose first pull
-/// comes a frame later); what stretches it is the first step's pull, whose weight and grip
-/// were set for the seed's card and which `Paper::apply` does not scale with the paper.
+/// Issue 42's grab bound, 2 % in the grab's first frame: measured (8 x 11, 16 x 22) bible
+/// 0.07 % and 0.58 %, novel 0.08 % and 0.91 %, magazine 0.10 % and 0.90 %. Before the
+/// finger held the page where it lay (`folio_pages::dog::finger_frame`), its first pull
+/// aimed along the arched page, away from the node, and the same pages stretched by 1.7 %
+/// to 6.5 %.
 #[test]
-#[ignore = "issue 42: the grab's pull is not yet scaled with the paper (book papers 2.1-6.5 %)"]
 fn a_book_paper_page_grabbed_from_its_block_stretches_by_2_percent_at_most() {
-    let misses = grab_misses(&[
-        ("bible", Some(Stock::BIBLE)),
-        ("novel", Some(Stock::NOVEL)),
-        ("magazine", Some(Stock::MAGAZINE)),
-    ]);
+    let misses = grab_misses(&BOOK_PAPERS, false);
     assert!(misses.is_empty(), "{misses:?}");
+}
+
+/// Issue 42's page-turn bound, the run guard's 10 % over the whole turn, not met by the
+/// book papers on the top-page gutter: measured (8 x 11, 16 x 22) bible 2.2 % and 5.6 %,
+/// novel 3.0 % and 10.2 %, magazine 4.1 % and 7.2 % (32 x 44: 7.4 %, 10.6 %, 19.3 %). The
+/// largest stretch lies at the binding's corner as the page lifts, and in the free page
+/// after the release; the pull scaled as the square root of the bending (which keeps the
+/// same turn within 1.8 %) left the built-in scenes' pages unturned.
+#[test]
+#[ignore = "issue 42: a book paper's turn stretches its page over 10 % at 16 x 22"]
+fn a_book_paper_page_turns_within_the_run_guard() {
+    let misses = grab_misses(&BOOK_PAPERS, true);
+    assert!(misses.is_empty(), "{misses:?}");
+}
+
+/// The finger holds the page where it touched it: after a grab and a drag to the finger's
+/// grab point $(\pm u, 0, v)$ in the page frame, the held node's target is the node where
+/// it lies, on either side and either gutter, and on a page arched over its top page (a
+/// novel's on `Gutter::TopPage`) that is nearer the binding than $u$.
+#[test]
+fn the_finger_holds_the_page_where_it_touched_it() {
+    use folio_pages::PageModel;
+    use folio_pages::dog::DogPage;
+    for (stock, gutter) in [
+        (Some(Stock::NOVEL), Gutter::TopPage),
+        (None, Gutter::TopPage),
+        (Some(Stock::NOVEL), Gutter::Seed),
+    ] {
+        for side in [BlockSide::Right, BlockSide::Left] {
+            let mut page = DogPage::new(settings(stock, gutter, [8, 11])).expect("the book");
+            let [w, h] = page.size();
+            let at = [w - 0.5, 0.3 * h];
+            page.grab_page(side, 1, at).expect("the grab");
+            let u = if side == BlockSide::Left {
+                -at[0]
+            } else {
+                at[0]
+            };
+            page.drag(folio_kernels::Vec3Ops::new(u, 0.0, at[1]))
+                .expect("the drag");
+            let book = page.book();
+            let (node, target) = (book.held_node().unwrap(), book.target().unwrap());
+            let held = book.page().unwrap()[node];
+            let case = format!("{stock:?} {gutter:?} {side:?}");
+            assert!((held - target).length() < 1e-12, "{case}: {held} {target}");
+            if stock.is_some() && gutter == Gutter::TopPage {
+                // The arch: the node lies nearer the binding than its material distance.
+                let grid = book.nodes().grid;
+                let (i, _) = grid.coords(node);
+                let hinge = book.page().unwrap()[0];
+                let reach = (held.x - hinge.x).abs();
+                let material = i as f64 * book.grid_spacing()[0];
+                assert!(reach < material - 0.3, "{case}: {reach} {material}");
+            }
+        }
+    }
 }
 
 #[test]
