@@ -198,8 +198,9 @@ fn a_book_paper_page_grabbed_from_its_block_stretches_by_2_percent_at_most() {
 /// book papers on the top-page gutter: measured (8 x 11, 16 x 22) bible 2.2 % and 5.6 %,
 /// novel 3.0 % and 10.2 %, magazine 4.1 % and 7.2 % (32 x 44: 7.4 %, 10.6 %, 19.3 %). The
 /// largest stretch lies at the binding's corner as the page lifts, and in the free page
-/// after the release; the pull scaled as the square root of the bending (which keeps the
-/// same turn within 1.8 %) left the built-in scenes' pages unturned.
+/// after the release. A weaker pull keeps this turn within the guard (50: 1.8 % at most),
+/// but the pull scaled as the square root of the bending left the built-in scenes' pages
+/// unturned (`docs/accuracy.md`).
 #[test]
 #[ignore = "issue 42: a book paper's turn stretches its page over 10 % at 16 x 22"]
 fn a_book_paper_page_turns_within_the_run_guard() {
