@@ -11,6 +11,7 @@ use folio_kernels::{Real, Vec3Ops, math};
 use super::error::BookError;
 use super::interaction::{Ray, Tent};
 use super::outcome::{DragOutcome, GrabOutcome};
+use super::pad::{interpolate, pad_point, pad_samples};
 use super::simulation::{ActivePage, Book, Hold};
 
 /// The node of `nodes` with the smallest `distance` (NaN counts as farthest); `None` only
@@ -162,7 +163,8 @@ impl<T: Real> Book<T> {
             ray.distance_sq(self.state.x[node]).to_f64()
         });
         Ok(nearest.map_or(GrabOutcome::Missed, |node| {
-            self.hold_node(side, node, forward)
+            let at = self.material_point(node);
+            self.hold_node(side, node, forward, at)
         }))
     }
 
@@ -195,7 +197,9 @@ impl<T: Real> Book<T> {
             du * du + dv * dv
         });
         let down = T::Vec3::new(T::ZERO, -T::ONE, T::ZERO);
-        Ok(nearest.map_or(GrabOutcome::Missed, |node| self.hold_node(side, node, down)))
+        Ok(nearest.map_or(GrabOutcome::Missed, |node| {
+            self.hold_node(side, node, down, at)
+        }))
     }
 
     /// The block a grab holds: the active page's, or else `pick` after `pages` pages of it
@@ -242,11 +246,32 @@ impl<T: Real> Book<T> {
         true
     }
 
-    /// Holds page node `node` (global index) where it is, with the drag plane facing
-    /// `forward` (unit or not; checked by the callers) and the tent over the binding.
-    fn hold_node(&mut self, side: BlockSide, node: usize, forward: T::Vec3) -> GrabOutcome {
+    /// The material point $(u, v)$ of page node `node` (global index), page units.
+    fn material_point(&self, node: usize) -> [f64; 2] {
         let n = self.terms.nodes;
-        let held = self.state.x[node];
+        let (i, j) = n.grid.coords(node - n.page_offset());
+        let spacing = self.grid_spacing();
+        [i as f64 * spacing[0], j as f64 * spacing[1]]
+    }
+
+    /// Holds page node `node` (global index) where it is, with the drag plane facing
+    /// `forward` (unit or not; checked by the callers) and the tent over the binding. A book
+    /// with a pad ([`crate::BookSettings::pad_radius`]) holds the pad centred on the
+    /// material point `at` instead of the node alone, and the hold's target is the pad's
+    /// centre.
+    fn hold_node(
+        &mut self,
+        side: BlockSide,
+        node: usize,
+        forward: T::Vec3,
+        at: [f64; 2],
+    ) -> GrabOutcome {
+        let n = self.terms.nodes;
+        let held = if self.terms.has_pad() {
+            self.grab_pad(at)
+        } else {
+            self.state.x[node]
+        };
         let (i, _) = n.grid.coords(node - n.page_offset());
         let p = self.layout.params;
         let thicker = if self.counts.left > self.counts.right {
@@ -272,7 +297,9 @@ impl<T: Real> Book<T> {
             plane_normal: normal,
             tent,
         };
-        self.terms.set_pull(Some((node, held)));
+        if !self.terms.has_pad() {
+            self.terms.set_pull(Some((node, held)));
+        }
         if let Some(a) = self.active.as_mut() {
             a.hold = Some(hold);
             a.slow_frames = 0;
@@ -281,6 +308,39 @@ impl<T: Real> Book<T> {
             side,
             node: node - n.page_offset(),
         }
+    }
+
+    /// Puts the pad ([`crate::pad`]) on the material point `at` and holds its points where
+    /// they lie; returns where its centre lies.
+    fn grab_pad(&mut self, at: [f64; 2]) -> T::Vec3 {
+        let n = self.terms.nodes;
+        let quads = [self.settings.quads_across, self.settings.quads_along];
+        let spacing = self.grid_spacing();
+        let size = self.page_size();
+        let page = &self.state.x[n.page_offset()..];
+        let samples = pad_samples(at, self.settings.pad_radius.to_f64(), size, spacing, quads);
+        let center = pad_point(
+            [at[0].clamp(0.0, size[0]), at[1].clamp(0.0, size[1])],
+            spacing,
+            quads,
+            1.0,
+        );
+        let c = interpolate::<T>(&center, page, n.grid.nx);
+        let pad = &mut self.pad;
+        pad.offsets.clear();
+        pad.offsets.extend(
+            samples
+                .iter()
+                .map(|s| interpolate::<T>(s, page, n.grid.nx) - c),
+        );
+        pad.samples = samples;
+        pad.center = Some(center);
+        pad.grabbed = c;
+        let row = folio_kernels::math::floor::<f64>(at[1] / spacing[1] + 0.5);
+        pad.row = (row.max(0.0) as usize).min(n.grid.nz - 1);
+        pad.aim(c, c);
+        self.terms.set_pad(Some((&pad.samples, &pad.targets)));
+        c
     }
 
     /// The block whose top surface `ray` hits first, if any.
@@ -373,7 +433,13 @@ impl<T: Real> Book<T> {
         let Some(hold) = self.active.and_then(|a| a.hold) else {
             return;
         };
-        let x = self.state.x[hold.node];
+        let n = self.terms.nodes;
+        let x = match &self.pad.center {
+            Some(c) if self.terms.has_pad() => {
+                interpolate::<T>(c, &self.state.x[n.page_offset()..], n.grid.nx)
+            }
+            _ => self.state.x[hold.node],
+        };
         let d = hold.target - x;
         let len = math::length::<T>(d);
         let s = &self.settings;
@@ -388,7 +454,14 @@ impl<T: Real> Book<T> {
         } else {
             hold.target
         };
-        self.terms.set_pull(Some((hold.node, p)));
+        if self.terms.has_pad() && self.pad.center.is_some() {
+            let hinge = self.state.x[n.page(0, self.pad.row)];
+            self.pad.aim(hinge, p);
+            self.terms
+                .set_pad(Some((&self.pad.samples, &self.pad.targets)));
+        } else {
+            self.terms.set_pull(Some((hold.node, p)));
+        }
     }
 
     /// The held node (index into the page grid), if one is held.

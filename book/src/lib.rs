@@ -45,6 +45,7 @@ mod merge;
 pub mod mesh;
 pub mod model;
 mod outcome;
+pub mod pad;
 pub mod paper;
 pub mod quadrature;
 pub mod script;

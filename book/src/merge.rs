@@ -10,6 +10,10 @@ impl<T: Real> Book<T> {
     /// Lets go of the active page; returns whether something was held.
     pub fn release(&mut self) -> bool {
         self.terms.set_pull(None);
+        if self.terms.has_pad() {
+            self.terms.set_pad(None);
+            self.pad.center = None;
+        }
         match self.active.as_mut() {
             Some(a) if a.hold.is_some() => {
                 a.hold = None;

@@ -22,9 +22,10 @@ use folio_kernels::iso3d::Iso3d;
 use folio_kernels::{KernelError, Real, Vec3Ops};
 
 use super::effects::Effects;
+use super::pad::{PadQuad, PadSample, corners, pad_weight};
 use super::quadrature::{self, PageBending};
 use super::settings::BookSettings;
-use super::terms::{Contact, DogBoundary, DogInner, Grip, Isometry, PlanarFix, Pull};
+use super::terms::{Contact, DogBoundary, DogInner, Grip, Isometry, PadGrip, PlanarFix, Pull};
 use folio_solvers::model::{ConstraintSet, Model, PotentialSet, TermVisitor};
 
 /// Where each kind of node lives in the state (module docs).
@@ -109,6 +110,8 @@ pub enum Family {
     PageIso,
     /// The grab pulls (eq. 14).
     Pull,
+    /// The finger's pad, one per quad where the settings ask for one ([`crate::pad`]).
+    Pad,
 }
 
 /// Every term of the book (seed eq. 5 and 9), built once; parameters (masses, $q$, the
@@ -138,9 +141,12 @@ pub struct BookTerms<T: Real> {
     page_gravity: PotentialSet<T, Gravity<T>, 1>,
     pull: PotentialSet<T, Pull<T>, 1>,
     pull_nodes: Vec<usize>,
-    /// The weights of the page's bending, iso3D and pull, and its grip, for one page (see
-    /// [`BookTerms::set_stack`]).
-    page_weights: [T; 4],
+    /// The finger's pad, one per quad (none unless [`BookSettings::pad_radius`] is
+    /// positive), weighted by [`pad_weight`].
+    pad: PotentialSet<T, PadGrip<T>, 4>,
+    /// The weights of the page's bending, iso3D and pull, its grip and the pad's weight, for
+    /// one page (see [`BookTerms::set_stack`]).
+    page_weights: [T; 5],
     /// The largest force of the pull (page masses times page units per s²; see
     /// [`BookTerms::grip_force`]), for the active stack.
     grip: T,
@@ -178,6 +184,9 @@ impl<T: Real> BookTerms<T> {
         t.push_blocks(layout)?;
         t.push_page(layout, settings)?;
         t.push_pulls()?;
+        if cfg!(feature = "pad") && settings.pad_radius > T::ZERO {
+            t.push_pads();
+        }
         t.push_contacts()?;
         Ok(t)
     }
@@ -204,11 +213,13 @@ impl<T: Real> BookTerms<T> {
             page_gravity: PotentialSet::new(T::ONE),
             pull: PotentialSet::new(w.pull),
             pull_nodes: Vec::new(),
+            pad: PotentialSet::new(pad_weight(w.pull, w.bend_page, settings.pad_radius)),
             page_weights: [
                 w.bend_page,
                 w.iso_page * T::from_f64(settings.iso_scale()),
                 w.pull,
                 Self::grip_force(settings),
+                pad_weight(w.pull, w.bend_page, settings.pad_radius),
             ],
             grip: Self::grip_force(settings),
             projected_isometry: settings.isometry_hessian == crate::IsometryHessian::Projected,
@@ -363,6 +374,19 @@ impl<T: Real> BookTerms<T> {
         Ok(())
     }
 
+    /// The pad's quads ([`crate::pad`]), one per quad of the page, all off.
+    fn push_pads(&mut self) {
+        let (grid, po) = (self.nodes.grid, self.nodes.page_offset());
+        let off = PadGrip {
+            kernel: PadQuad::ZERO,
+            active: false,
+        };
+        for quad in 0..(grid.nx - 1) * (grid.nz - 1) {
+            let nodes = corners(quad, grid.nx).map(|k| po + k);
+            self.pad.push(off, as_u32(nodes));
+        }
+    }
+
     /// The contact springs, all off: one per block and cover node (with simulated blocks)
     /// and one per page node, when collisions are on.
     fn push_contacts(&mut self) -> Result<(), KernelError> {
@@ -410,6 +434,7 @@ impl<T: Real> BookTerms<T> {
             Family::PageBending => self.bend_inner.terms().len() + self.bend_boundary.terms().len(),
             Family::PageIso => self.iso3d.terms().len(),
             Family::Pull => self.pull.terms().len(),
+            Family::Pad => self.pad.terms().len(),
         }
     }
 
@@ -463,11 +488,12 @@ impl<T: Real> BookTerms<T> {
     /// out of the grab under 45 pages of gravity and falls back. The grip, a force the
     /// stack's stretch stiffness bounds, scales with it.
     pub fn set_stack(&mut self, pages: T) {
-        let [bend, iso, pull, grip] = self.page_weights.map(|w| w * pages);
+        let [bend, iso, pull, grip, pad] = self.page_weights.map(|w| w * pages);
         self.bend_inner.weight = bend;
         self.bend_boundary.weight = bend;
         self.iso3d.weight = iso;
         self.pull.weight = pull;
+        self.pad.weight = pad;
         self.grip = grip;
     }
 
@@ -502,6 +528,41 @@ impl<T: Real> BookTerms<T> {
                 }
                 _ => kernel.active = false,
             }
+        }
+    }
+
+    /// Whether the book holds its page with a pad ([`BookSettings::pad_radius`]).
+    #[must_use]
+    pub fn has_pad(&self) -> bool {
+        cfg!(feature = "pad") && !self.pad.terms().is_empty()
+    }
+
+    /// Holds the pad's points `samples` at `targets` (one each, page units), or lets the
+    /// pad go with `None`: the quads that hold a point get [`PadQuad`]'s sums, the others are
+    /// switched off.
+    pub fn set_pad(&mut self, held: Option<(&[PadSample], &[T::Vec3])>) {
+        for kernel in self.pad.kernels_mut() {
+            kernel.active = false;
+            kernel.kernel = PadQuad::ZERO;
+        }
+        let Some((samples, targets)) = held else {
+            return;
+        };
+        for (s, &p) in samples.iter().zip(targets) {
+            let Some(kernel) = self.pad.kernel_mut(s.quad) else {
+                continue;
+            };
+            let q = &mut kernel.kernel;
+            let a = T::from_f64(s.share);
+            for k in 0..4 {
+                let nk = T::from_f64(s.shape[k]);
+                for l in 0..4 {
+                    q.a[k][l] += a * nk * T::from_f64(s.shape[l]);
+                }
+                q.b[k] += p * (a * nk);
+            }
+            q.c += a * p.dot(p);
+            kernel.active = true;
         }
     }
 
@@ -618,6 +679,9 @@ impl<T: Real> Model<T> for ActiveView<'_, T> {
         v.potentials(&t.iso3d);
         v.potentials(&t.page_gravity);
         v.potentials(&t.pull);
+        if cfg!(feature = "pad") {
+            v.potentials(&t.pad);
+        }
         v.potentials(&t.page_contacts);
         v.constraints(&t.dog_inner);
         v.constraints(&t.dog_boundary);

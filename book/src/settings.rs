@@ -213,6 +213,11 @@ pub struct BookSettings<T: Real> {
     /// above the default pull's largest force, so the default grab never slips (why:
     /// `docs/settings.md`).
     pub grip_strain: T,
+    /// The finger's pad (page units; finite, in $[0, W/2]$ for the page width $W$): a grab
+    /// holds every material point of the page within this radius of the grab point, whatever
+    /// the grid ([`crate::pad`]); 0 holds one node, the seed's pull (eq. 14). Default 0. A
+    /// fingertip's pad is about 7 mm, 0.57 page units on an A5 page.
+    pub pad_radius: T,
     /// The fastest turn of the held node about the binding (radians per second; finite, $> 0$):
     /// the leash of one step is also at most this turn, $\omega h \rho$ at the node's distance
     /// $\rho$ from the binding along the flat page, so that one Newton iteration never turns an
@@ -314,6 +319,7 @@ impl<T: Real> Default for BookSettings<T> {
             min_block_mass: T::HALF,
             pull_reach: T::ONE,
             grip_strain: T::from_f64(0.0075),
+            pad_radius: T::ZERO,
             pull_turn_rate: T::from_f64(4.0),
             tent_height: T::from_f64(0.6),
             merge_speed: T::from_f64(0.5),
@@ -478,6 +484,12 @@ impl<T: Real> BookSettings<T> {
                 "\"seed\": the top-page gutter's Cargo feature (gutter) of folio-book is not enabled",
             ));
         }
+        if self.pad_radius > T::ZERO && !cfg!(feature = "pad") {
+            return Err(SettingError::new(
+                "pad_radius",
+                "0: the finger's pad's Cargo feature (pad) of folio-book is not enabled",
+            ));
+        }
         // The book's range of the step first: it is narrower than the solver's.
         let h = self.solver.time_step.to_f64();
         require(
@@ -530,6 +542,12 @@ impl<T: Real> BookSettings<T> {
             MIN_CELL_TOLERANCES * self.projection_tolerance.to_f64() * across as f64,
             "a page too small to touch: its grid cells must be at least 100 constraint \
              tolerances wide",
+        )?;
+        require_range(
+            "pad_radius",
+            self.pad_radius.to_f64(),
+            0.0,
+            0.5 * self.params.page_width,
         )?;
         require(
             self.tent_height > T::ZERO && self.tent_height <= T::ONE,

@@ -229,6 +229,8 @@ pub struct Book<T: Real> {
     pub(crate) top_page_counts: Option<PageCounts>,
     /// Top pages that did not settle ([`Book::top_page_failures`]).
     pub(crate) top_page_failures: u32,
+    /// The finger's pad while one holds the page ([`BookSettings::pad_radius`]).
+    pub(crate) pad: crate::pad::HeldPad<T>,
 }
 
 impl<T: Real> BookStepReport<T> {
@@ -302,6 +304,7 @@ impl<T: Real> Book<T> {
             top_pages: [Vec::new(), Vec::new()],
             top_page_counts: None,
             top_page_failures: 0,
+            pad: crate::pad::HeldPad::none(),
         };
         book.place_page(BlockSide::Right, 1);
         book.update_masses();

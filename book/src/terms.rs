@@ -185,27 +185,31 @@ pub type Pull<T> = Switched<Grip<T>>;
 /// (see [`ContactPlane`]); declared on every page node.
 pub type Contact<T> = Switched<ContactPlane<T>>;
 
-impl<T: Real, P: Potential<T, 1>> Potential<T, 1> for Switched<P> {
+/// The finger's pad on one quad ([`crate::pad`]), on while a pad holds a point of that
+/// quad; declared on every quad of a book whose settings ask for a pad.
+pub type PadGrip<T> = Switched<crate::pad::PadQuad<T>>;
+
+impl<T: Real, P: Potential<T, N>, const N: usize> Potential<T, N> for Switched<P> {
     const CONSTANT_HESSIAN: bool = P::CONSTANT_HESSIAN;
-    fn value(&self, x: &NodeVecs<T, 1>) -> T {
+    fn value(&self, x: &NodeVecs<T, N>) -> T {
         if self.active {
             self.kernel.value(x)
         } else {
             T::ZERO
         }
     }
-    fn gradient(&self, x: &NodeVecs<T, 1>) -> NodeVecs<T, 1> {
+    fn gradient(&self, x: &NodeVecs<T, N>) -> NodeVecs<T, N> {
         if self.active {
             self.kernel.gradient(x)
         } else {
-            zero_vecs::<T, 1>()
+            zero_vecs::<T, N>()
         }
     }
-    fn hessian(&self, x: &NodeVecs<T, 1>) -> Blocks<T, 1> {
+    fn hessian(&self, x: &NodeVecs<T, N>) -> Blocks<T, N> {
         if self.active {
             self.kernel.hessian(x)
         } else {
-            zero_blocks::<T, 1>()
+            zero_blocks::<T, N>()
         }
     }
 }

@@ -11,6 +11,7 @@ pub mod dense_kkt;
 pub mod elastica;
 pub mod fuzz;
 pub mod models;
+pub mod pad;
 pub mod paths;
 pub mod terms;
 pub mod turn;

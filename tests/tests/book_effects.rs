@@ -12,7 +12,7 @@ use folio_geometry::BlockSide;
 const PAGE_TURN: &str = include_str!("../fixtures/page_turn.input");
 const BOOKMARK_FLIP: &str = include_str!("../fixtures/bookmark_flip.input");
 
-const FAMILIES: [Family; 11] = [
+const FAMILIES: [Family; 12] = [
     Family::Gravity,
     Family::Glue,
     Family::Contacts,
@@ -24,6 +24,7 @@ const FAMILIES: [Family; 11] = [
     Family::PageBending,
     Family::PageIso,
     Family::Pull,
+    Family::Pad,
 ];
 
 /// The default book with `effects`.

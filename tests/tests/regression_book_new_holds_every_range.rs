@@ -24,7 +24,19 @@ struct Case {
     c: Option<fn(&mut FolioBookSettings)>,
 }
 
-const CASES: [Case; 6] = [
+const CASES: [Case; 8] = [
+    Case {
+        path: "pad_radius",
+        set: |s| s.pad_radius = 7.0,
+        scene: "[book]\npad_radius = 7.0",
+        c: None,
+    },
+    Case {
+        path: "pad_radius",
+        set: |s| s.pad_radius = f64::NAN,
+        scene: "[book]\npad_radius = nan",
+        c: None,
+    },
     Case {
         path: "solver.time_step",
         set: |s| s.solver.time_step = 1e-300,
