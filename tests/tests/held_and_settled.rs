@@ -1,15 +1,16 @@
 //! Issue 42's R1, held and settled: a novel page's fore-edge middle held by the finger's pad
 //! (7 mm, `BookSettings::pad_radius`) and turned about the binding to 45°, its pad's centre
 //! at 0.9 of the page width from the hinge, then held until every node is slower than
-//! 1e-9 page units a second; Newton with the constraint Hessian to a KKT residual of 1e-10
-//! (at most 20 iterations). The settled page is read at 13 x 17 material points on
-//! 8 x 11, 16 x 22 and 32 x 44 and the grids compared.
+//! 1e-9 page units a second; Newton with the constraint Hessian to a KKT residual of 1e-9
+//! (at most 20 iterations; the book's constraints keep a residual of 1.45e-10 on 8 x 11 and
+//! 2.6e-9 on 32 x 44 that Newton does not reduce, `docs/accuracy.md`, R1). The settled page
+//! is read at 13 x 17 material points on 8 x 11, 16 x 22 and 32 x 44 and the grids compared.
 //!
 //! The issue's bound (16 x 22 within 1 % of the page width RMS of the converged reference,
 //! an observed order of at least 1) is not met: this study is ignored and states what it
-//! measured (`docs/accuracy.md`, "R1"). Run it with
+//! measured (`docs/accuracy.md`, "R1": 0.39 % then 1.61 %). Run it with
 //! `cargo test --release -p folio-tests --test held_and_settled -- --ignored --nocapture`
-//! (about 20 minutes).
+//! (about 12 minutes).
 
 use folio_book::pad::{interpolate, pad_point};
 use folio_book::{Book, BookSettings, Gutter, Stock};
@@ -34,7 +35,7 @@ struct Settled {
     residual: f64,
 }
 
-/// The novel book on `quads` with the top-page gutter, the pad and Newton to 1e-10.
+/// The novel book on `quads` with the top-page gutter, the pad and Newton to 1e-9.
 fn settings(quads: [usize; 2]) -> BookSettings<f64> {
     let mut s = BookSettings::<f64>::default();
     s.params.left_pages = s.params.total_pages / 2;
@@ -48,7 +49,7 @@ fn settings(quads: [usize; 2]) -> BookSettings<f64> {
     s.pad_radius = 7e-3 / (A5_WIDTH / 12.0);
     s.solver.constraint_hessian = true;
     s.solver.newton_iterations = 20;
-    s.solver.tolerance = 1e-10;
+    s.solver.tolerance = 1e-9;
     s
 }
 
@@ -112,7 +113,7 @@ fn rms(a: &[V], b: &[V], w: f64) -> f64 {
 }
 
 #[test]
-#[ignore = "R1 does not converge yet: 1.05 % then 1.03 % (docs/accuracy.md, R1); ~20 minutes"]
+#[ignore = "R1 does not converge yet: 0.39 % then 1.61 % (docs/accuracy.md, R1); ~12 minutes"]
 fn a_page_held_by_its_pad_converges_with_the_grid() {
     let grids = [[8, 11], [16, 22], [32, 44]];
     let runs: Vec<Settled> = grids.iter().map(|&q| held(q, 45.0, 0.9)).collect();
