@@ -2,8 +2,9 @@
 //! (7 mm, `BookSettings::pad_radius`) and turned about the binding to 45°, its pad's centre
 //! at 0.9 of the page width from the hinge, then held until every node is slower than
 //! 1e-9 page units a second; Newton with the constraint Hessian to a KKT residual of 1e-9
-//! (at most 20 iterations; the book's constraints keep a residual of 1.45e-10 on 8 x 11 and
-//! 2.6e-9 on 32 x 44 that Newton does not reduce, `docs/accuracy.md`, R1). The settled page
+//! (at most 20 iterations; the blocks' links at the binding keep a residual of 1.45e-10 on
+//! 8 x 11, the DOG constraints 2.6e-9 on 32 x 44, that Newton does not reduce,
+//! `docs/accuracy.md`, R1). The settled page
 //! is read at 13 x 17 material points on 8 x 11, 16 x 22 and 32 x 44 and the grids compared.
 //!
 //! The bound (16 x 22 within 1 % of the page width RMS of the converged reference,
