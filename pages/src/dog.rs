@@ -202,10 +202,14 @@ impl<T: Real> PageModel<T> for DogPage<T> {
 /// The page frame of a grab (module docs), for callers that drive [`Book::drag_to`] with a
 /// finger's path in it: its origin in the book frame, the rest corner of the active page
 /// ($x$ of node $(0, 0)$ at the binding, $y$ of the fore-edge's node $(n_x - 1, 0)$, $z = 0$),
-/// and the offset from the finger to the held page node `node` (index into the page grid)
-/// that puts the finger's grab point $(\pm u, 0, v)$ at `at` $= (u, v)$ (minus on the
-/// left) on the node where it lies: a drag to $f$ aims the node at $f + \text{offset} +
-/// \text{origin}$. `None` without an active page or for a node off its grid.
+/// and the offset from the finger to the held point that puts the finger's grab point
+/// $(\pm u, 0, v)$ at `at` $= (u, v)$ (minus on the left) on the held point where it lies:
+/// a drag to $f$ aims the held point at $f + \text{offset} + \text{origin}$. The held point
+/// is the hold's target at the grab ([`Book::target`]): the held page node `node` (index
+/// into the page grid) under the seed's pull, the pad's centre under a pad
+/// ([`folio_book::BookSettings::pad_radius`]; aiming a pad at its nearest node instead
+/// pulled it 1.5 page units off on 8 x 11). Call it right after the grab. `None` without
+/// an active page or for a node off its grid.
 #[must_use]
 pub fn finger_frame<T: Real>(
     book: &Book<T>,
@@ -218,7 +222,7 @@ pub fn finger_frame<T: Real>(
     let (corner, edge, held) = (
         *page.first()?,
         *page.get(grid.index(grid.nx - 1, 0))?,
-        *page.get(node)?,
+        book.target().or_else(|| page.get(node).copied())?,
     );
     let origin = T::Vec3::new(corner.x(), edge.y(), T::ZERO);
     let u = if side == BlockSide::Left {
