@@ -79,7 +79,7 @@ fn held(quads: [usize; 2], degrees: f64, chord: f64) -> Settled {
         let speed = book.state().v[n.page_offset()..]
             .iter()
             .map(|v| v.length())
-            .fold(0.0, f64::max);
+            .fold(0.0, |w: f64, s| if s > w || s.is_nan() { s } else { w });
         if f > lift && speed < 1e-9 {
             settled = true;
             break;

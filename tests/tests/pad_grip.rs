@@ -84,7 +84,7 @@ fn pad_error(stock: Option<Stock>, quads: [usize; 2]) -> (f64, usize) {
             let want = target + turn_about::<f64>(hinge, center, target, q - center);
             (x - want).length()
         })
-        .fold(0.0, f64::max);
+        .fold(0.0, |w: f64, d| if d > w || d.is_nan() { d } else { w });
     (worst, pad.len())
 }
 
