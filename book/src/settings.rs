@@ -52,7 +52,8 @@ pub const WEIGHT_RANGES: [(&str, f64, f64); 5] = [
     ("weights.pull", 50.0, 2000.0),
 ];
 
-/// The lowest `weights.bend_page` under [`IsometryHessian::Projected`], which holds a page
+/// The lowest `weights.bend_page` under [`IsometryHessian::Projected`] (or a convexifying
+/// solver, [`BookSettings::holds_a_soft_page`]), which holds a page
 /// that soft (the exact Hessian holds its range of [`WEIGHT_RANGES`], from 30): a sag number
 /// of 167 at the default page mass, bible paper on an A4 page (`tests/tests/paper_turns.rs`
 /// turns a page at this bound).
@@ -468,6 +469,16 @@ pub const MIN_CELL_TOLERANCES: f64 = 100.0;
 pub const MAX_PROJECTION_ITERATIONS: u32 = 50;
 
 impl<T: Real> BookSettings<T> {
+    /// The Newton step can take the convex stand-in of the page's isometry Hessian: it
+    /// assembles it always ([`IsometryHessian::Projected`]) or where the exact one is
+    /// indefinite (`solver.convexify`, [`folio_solvers::Convexify`]). Such a step holds a
+    /// page down to [`SOFT_BEND_PAGE_MIN`]; the exact Hessian alone, from 30.
+    #[must_use]
+    pub fn holds_a_soft_page(&self) -> bool {
+        self.isometry_hessian == IsometryHessian::Projected
+            || self.solver.convexify != folio_solvers::Convexify::Never
+    }
+
     /// Checks every field against its range (each field's docs, [`WEIGHT_RANGES`], and the
     /// layout's, the effects' and the solver's own `validate`), and that the page can be
     /// touched: a grid cell at least [`MIN_CELL_TOLERANCES`] constraint tolerances wide.
@@ -518,8 +529,7 @@ impl<T: Real> BookSettings<T> {
             require_non_negative(field, v.to_f64())?;
         }
         for ((field, v), (_, lo, hi)) in self.weights.named().into_iter().zip(WEIGHT_RANGES) {
-            let soft =
-                field == "weights.bend_page" && self.isometry_hessian == IsometryHessian::Projected;
+            let soft = field == "weights.bend_page" && self.holds_a_soft_page();
             let lo = if soft { SOFT_BEND_PAGE_MIN } else { lo };
             require_range(field, v.to_f64(), lo, hi)?;
         }

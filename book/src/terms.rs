@@ -116,6 +116,11 @@ impl<T: Real> Potential<T, 2> for Isometry<T> {
             self.edge.hessian(x)
         }
     }
+    /// The projected Hessian whatever `projected` says: what a convexifying solver takes
+    /// where the exact one makes the step indefinite.
+    fn convex_hessian(&self, x: &NodeVecs<T, 2>) -> Blocks<T, 2> {
+        self.edge.convex_hessian(x)
+    }
 }
 
 /// The grab's pull, seed `000_…` eq. 14 with a bounded force: the held node $x_i$ pulled
@@ -208,6 +213,13 @@ impl<T: Real, P: Potential<T, N>, const N: usize> Potential<T, N> for Switched<P
     fn hessian(&self, x: &NodeVecs<T, N>) -> Blocks<T, N> {
         if self.active {
             self.kernel.hessian(x)
+        } else {
+            zero_blocks::<T, N>()
+        }
+    }
+    fn convex_hessian(&self, x: &NodeVecs<T, N>) -> Blocks<T, N> {
+        if self.active {
+            self.kernel.convex_hessian(x)
         } else {
             zero_blocks::<T, N>()
         }

@@ -61,4 +61,8 @@ impl<T: Real> Potential<T, 2> for Iso3d<T> {
         let four = T::from_f64(4.0);
         pair_blocks::<T>(T::Mat3::outer(d, d) * T::from_f64(8.0) + T::Mat3::IDENTITY * (four * s))
     }
+    /// [`Iso3d::hessian_projected`].
+    fn convex_hessian(&self, x: &NodeVecs<T, 2>) -> Blocks<T, 2> {
+        self.hessian_projected(x)
+    }
 }

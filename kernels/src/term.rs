@@ -28,6 +28,13 @@ pub trait Potential<T: Real, const N: usize> {
 
     /// $\nabla^2 V(x)$ as `3 x 3` blocks; symmetric.
     fn hessian(&self, x: &NodeVecs<T, N>) -> Blocks<T, N>;
+
+    /// A positive semi-definite stand-in for [`Potential::hessian`], for a solver that
+    /// convexifies an indefinite Newton system (`folio_solvers::Convexify`). By default
+    /// the exact Hessian: a term without a convex form of its own.
+    fn convex_hessian(&self, x: &NodeVecs<T, N>) -> Blocks<T, N> {
+        self.hessian(x)
+    }
 }
 
 /// `R` constraint functions $\varphi_l(x_1, \dots, x_N) = 0$ with their Jacobian rows and

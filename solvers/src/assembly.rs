@@ -20,6 +20,21 @@ pub(crate) enum Derivatives {
     First,
     /// $\nabla V$, $\nabla C$, $\nabla^2 V$ and, if in the pattern, $\sum_l \lambda_l \nabla^2 C_l$.
     Second,
+    /// As [`Derivatives::Second`] with each potential's convex stand-in for $\nabla^2 V$
+    /// ([`Potential::convex_hessian`], [`crate::Convexify`]).
+    SecondConvex,
+}
+
+impl Derivatives {
+    /// The gradient and the primal block are assembled.
+    pub(crate) fn first(self) -> bool {
+        matches!(self, Self::First | Self::Second | Self::SecondConvex)
+    }
+
+    /// Second derivatives are assembled.
+    pub(crate) fn second(self) -> bool {
+        matches!(self, Self::Second | Self::SecondConvex)
+    }
 }
 
 /// Accumulates one evaluation of a model (see [`crate::model::Model::visit_terms`]).
@@ -215,10 +230,12 @@ impl<T: Real> TermVisitor<T> for Assemble<'_, T> {
                     }
                 }
             }
-            if self.derivatives == Derivatives::Second {
-                let h = term.kernel.hessian(&xs);
-                self.scatter_hessian::<N>(&f, t, &h, w);
-            }
+            let h = match self.derivatives {
+                Derivatives::Second => term.kernel.hessian(&xs),
+                Derivatives::SecondConvex => term.kernel.convex_hessian(&xs),
+                _ => continue,
+            };
+            self.scatter_hessian::<N>(&f, t, &h, w);
         }
     }
 
@@ -238,7 +255,7 @@ impl<T: Real> TermVisitor<T> for Assemble<'_, T> {
             }
             let jac = term.kernel.jacobian(&xs);
             self.scatter_jacobian::<R, N>(&f, t, &jac);
-            if self.derivatives == Derivatives::Second && f.has_hessian {
+            if self.derivatives.second() && f.has_hessian {
                 let mut lambda = [T::ZERO; R];
                 lambda.copy_from_slice(&self.lambda[row0..row0 + R]);
                 let h = term.kernel.hessian(&xs, &lambda);

@@ -384,14 +384,7 @@ impl<T: Real> Kkt<T> {
         let mut attempt = 0;
         loop {
             let outcome = self.factorize(epsilon_rel, delta_rel);
-            let indefinite = !matches!(
-                outcome,
-                FactorOutcome::Factored {
-                    regularized_primal: 0,
-                    ..
-                }
-            );
-            if !indefinite || attempt == MAX_SHIFTS {
+            if outcome.primal_definite() || attempt == MAX_SHIFTS {
                 return (outcome, shift);
             }
             let next = if shift == T::ZERO {

@@ -719,6 +719,19 @@ impl Pivots {
 }
 
 impl FactorOutcome {
+    /// Factorized with every primal pivot positive: the KKT matrix has the inertia of a
+    /// minimum (its primal block positive definite where eliminated).
+    #[must_use]
+    pub fn primal_definite(&self) -> bool {
+        matches!(
+            self,
+            Self::Factored {
+                regularized_primal: 0,
+                ..
+            }
+        )
+    }
+
     /// The outcome of a factorization whose earlier rows ended in `earlier`: the first
     /// non-finite pivot, or the regularized pivots of both.
     fn after(self, earlier: Self) -> Self {

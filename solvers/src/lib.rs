@@ -61,5 +61,5 @@ pub use model::{ConstraintSet, Model, PotentialSet, Term, TermVisitor};
 pub use ordering::Ordering;
 pub use report::{StepReport, StepStatus};
 pub use ring::Ring;
-pub use settings::{Parallelism, Settings};
+pub use settings::{Convexify, Parallelism, Settings};
 pub use step::{Correction, Pins, Solver, State};

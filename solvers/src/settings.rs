@@ -104,6 +104,42 @@ pub struct Settings<T: Real> {
     /// one thread below [`Parallelism::AUTO_MIN_ORDER`] unknowns (the book's pages), two
     /// above, with `std`.
     pub parallelism: Parallelism,
+    /// Which Hessian of each potential the Newton step assembles ([`Convexify`]). Default
+    /// [`Convexify::Never`]: the exact one, the seed's.
+    pub convexify: Convexify,
+}
+
+/// Which Hessian of each potential the Newton step assembles: the exact
+/// $\nabla^2 V$ or its positive semi-definite stand-in
+/// ([`folio_kernels::term::Potential::convex_hessian`]).
+///
+/// Newton's iteration converges quadratically only with the exact Hessian, and only where
+/// the KKT matrix has the inertia of a minimum (as many positive pivots as free
+/// coordinates). Far from one, a soft page's exact Hessian is indefinite and the inertia
+/// correction ([`crate::Kkt::factorize_with_inertia_correction`]) shifts the whole primal
+/// block, which stalls the step; the convex stand-in never needs that shift, but Newton
+/// with it converges at best linearly and may cycle between two iterates (Folio's
+/// measurement: a novel page held by its pad kept a residual of 1e-6 to 1e-3 over 20
+/// iterations a step at 16 x 22, `docs/accuracy.md`, R1).
+/// [`Convexify::WhenIndefinite`] takes each where it works.
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Convexify {
+    /// The exact Hessian of every potential.
+    #[default]
+    Never,
+    /// The convex stand-in of every potential.
+    Always,
+    /// The exact Hessian while the KKT matrix factors with the inertia of a minimum; in
+    /// an iteration where it does not, the convex stand-in (and the inertia correction
+    /// after it, should the constraint Hessian still make it indefinite). One extra
+    /// factorization and assembly in such an iteration; none elsewhere.
+    WhenIndefinite,
 }
 
 /// Threads of the KKT factorization. Two threads need the `std` feature; without it every
@@ -189,6 +225,7 @@ impl<T: Real> Default for Settings<T> {
             },
             check_final_residual: true,
             parallelism: Parallelism::Auto,
+            convexify: Convexify::Never,
         }
     }
 }

@@ -31,7 +31,7 @@ use crate::ordering::Ordering;
 use crate::pattern::KktPattern;
 use crate::report::{StepReport, StepStatus};
 use crate::room::{Room, refill, scaled};
-use crate::settings::{Parallelism, Settings};
+use crate::settings::{Convexify, Parallelism, Settings};
 use crate::vector::max_abs;
 
 mod line_search;
@@ -93,6 +93,9 @@ struct Workspace<T: Real> {
     trial: Vec<T::Vec3>,
     /// The numeric factor holds a successful factorization of this topology.
     factored: bool,
+    /// The factor holds the current KKT values, factored unshifted with the inertia of a
+    /// minimum ([`Workspace::factor_if_definite`]): the next solve needs no factorization.
+    definite_factor: Option<FactorOutcome>,
     /// The projection's normal equations $J W^{-1} J^\top$, analysed with the KKT for a
     /// solver that projects ([`Solver::analyse_projection`]), absent otherwise.
     normal: Option<NormalEquations<T>>,
@@ -145,6 +148,7 @@ impl<T: Real> Workspace<T> {
             x: Vec::new(),
             trial: Vec::new(),
             factored: false,
+            definite_factor: None,
             normal: None,
             released: Vec::new(),
             entries: Vec::new(),
@@ -504,7 +508,12 @@ impl<T: Real> Workspace<T> {
         report: &mut StepReport<T>,
     ) -> Result<Iteration, SolverError> {
         let h = s.time_step;
-        let e = self.evaluate(model, h, false, Derivatives::Second)?;
+        let second = if s.convexify == Convexify::Always {
+            Derivatives::SecondConvex
+        } else {
+            Derivatives::Second
+        };
+        let e = self.evaluate(model, h, false, second)?;
         if !e.finite {
             report.status = if iteration == 0 {
                 StepStatus::NonFiniteInput
@@ -519,6 +528,15 @@ impl<T: Real> Workspace<T> {
         report.constraint_residual = Some(max_abs(&self.constraint));
         if residual <= s.tolerance {
             return Ok(Iteration::Converged);
+        }
+        if s.convexify == Convexify::WhenIndefinite && !self.factor_if_definite(s, report) {
+            // The same point: the gradient, the constraints and so the right-hand side
+            // come out as they were; only the primal block takes the convex stand-ins.
+            let convex = self.evaluate(model, h, false, Derivatives::SecondConvex)?;
+            if !convex.finite {
+                report.status = StepStatus::NumericalFailure;
+                return Ok(Iteration::Failed);
+            }
         }
         if let Some(failed) = self.solve_with_damping(model, s, e.energy, report)? {
             report.status = failed;
@@ -572,9 +590,12 @@ impl<T: Real> Workspace<T> {
     /// is finite.
     fn factor_and_solve(&mut self, s: &Settings<T>, report: &mut StepReport<T>) -> bool {
         let before = self.kkt.factorizations();
-        let (outcome, shift) = self
-            .kkt
-            .factorize_with_inertia_correction(s.pivot_epsilon, s.regularization);
+        let (outcome, shift) = match self.definite_factor.take() {
+            Some(outcome) => (outcome, T::ZERO),
+            None => self
+                .kkt
+                .factorize_with_inertia_correction(s.pivot_epsilon, s.regularization),
+        };
         report.factorizations += (self.kkt.factorizations() - before) as u32;
         if shift > report.hessian_shift {
             report.hessian_shift = shift;
@@ -598,6 +619,18 @@ impl<T: Real> Workspace<T> {
             report.linear_residual = refinement.relative_residual;
         }
         solved
+    }
+
+    /// [`Convexify::WhenIndefinite`]'s test: factors the assembled (exact) system once,
+    /// unshifted. `true` when it has the inertia of a minimum; its factor then serves the
+    /// iteration's first solve ([`Workspace::factor_and_solve`]).
+    fn factor_if_definite(&mut self, s: &Settings<T>, report: &mut StepReport<T>) -> bool {
+        let before = self.kkt.factorizations();
+        let outcome = self.kkt.factorize(s.pivot_epsilon, s.regularization);
+        report.factorizations += (self.kkt.factorizations() - before) as u32;
+        let definite = outcome.primal_definite();
+        self.definite_factor = definite.then_some(outcome);
+        definite
     }
 
     /// Makes the accepted trial point the iterate and takes its multipliers $\lambda^+$.
@@ -709,7 +742,7 @@ impl<T: Real> Workspace<T> {
             Derivatives::Jacobian => self.kkt.values[jacobian_start..]
                 .iter_mut()
                 .for_each(|v| *v = T::ZERO),
-            Derivatives::First | Derivatives::Second => {
+            Derivatives::First | Derivatives::Second | Derivatives::SecondConvex => {
                 self.kkt.values.iter_mut().for_each(|v| *v = T::ZERO);
                 self.gradient.iter_mut().for_each(|v| *v = T::ZERO);
             }
@@ -736,7 +769,7 @@ impl<T: Real> Workspace<T> {
         for (d, &c) in pattern.coordinate_of.iter().enumerate() {
             let dx = x[c as usize / 3].get(c as usize % 3) - self.x_bar[d];
             inertia += self.mass[d] * dx * dx;
-            if matches!(derivatives, Derivatives::First | Derivatives::Second) {
+            if derivatives.first() {
                 self.kkt.values[pattern.diagonal_slot(d)] += self.mass[d] * inv_h2;
             }
         }
@@ -747,7 +780,7 @@ impl<T: Real> Workspace<T> {
             Derivatives::Jacobian => {
                 finite = finite && max_abs(&self.kkt.values[jacobian_start..]).is_finite();
             }
-            Derivatives::First | Derivatives::Second => {
+            Derivatives::First | Derivatives::Second | Derivatives::SecondConvex => {
                 finite = finite && max_abs(&self.gradient).is_finite();
                 finite = finite && max_abs(&self.kkt.values).is_finite();
             }
